@@ -1,0 +1,44 @@
+#pragma once
+// Pinhole intrinsics of the (aligned) colour camera and the paper's
+// projection / inverse-projection equations (1)-(4).
+//
+// Pixel convention: integer pixel coordinates are pixel centres (OpenCV and
+// sensor_msgs/CameraInfo), so pixel (u, v) back-projects along
+// ((u - cx) / fx, (v - cy) / fy, 1). The frame is the REP-103 optical frame:
+// x right, y down, z forward.
+
+#include <Eigen/Core>
+
+namespace brick_pose
+{
+struct PinholeCamera
+{
+  int width_px = 1280;
+  int height_px = 720;
+  double fx_px = 920.0;
+  double fy_px = 920.0;
+  double cx_px = 640.0;
+  double cy_px = 360.0;
+
+  /// Intrinsics of a D415 colour camera at 1280x720 (typical factory values).
+  static PinholeCamera d415Color1280x720();
+
+  /// Throws ConfigError naming the first bad field (zero/negative/NaN focal
+  /// length, empty image, principal point far outside the image).
+  void validate() const;
+
+  /// Pixel of a point in the optical frame; z must be > 0.
+  Eigen::Vector2d project(const Eigen::Vector3d& point_m) const;
+
+  /// Inverse projection of pixel (u, v) at depth Z (metres along the optical axis).
+  Eigen::Vector3d backProject(double u_px, double v_px, double depth_m) const;
+
+  /// Unit-less ray direction (z = 1) through pixel (u, v).
+  Eigen::Vector3d ray(double u_px, double v_px) const;
+
+  bool contains(double u_px, double v_px) const;
+
+  /// The same camera with the image scaled by `factor` (e.g. 0.5 for 640x360).
+  PinholeCamera scaled(double factor) const;
+};
+}  // namespace brick_pose
