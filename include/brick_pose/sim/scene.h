@@ -1,0 +1,70 @@
+#pragma once
+// What the synthetic D415 rig looks at: cuboids on a ground plane, seen by a
+// camera, and the ground truth it reports back.
+//
+// World frame: z up, the ground is the plane z = 0. Brick frame: origin at the
+// centre of the top face, x along the long edge, y along the short edge, z out
+// of the top face; the body spans z in [-height, 0].
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "brick_pose/catalogue/brick_catalogue.h"
+
+namespace brick_pose
+{
+namespace sim
+{
+struct PlacedBrick
+{
+  BrickType type;
+  Eigen::Isometry3d world_T_brick = Eigen::Isometry3d::Identity();
+};
+
+struct Scene
+{
+  std::vector<PlacedBrick> bricks;
+  /// Pose of the camera's optical frame (x right, y down, z forward).
+  Eigen::Isometry3d world_T_camera = Eigen::Isometry3d::Identity();
+  std::array<unsigned char, 3> ground_rgb{{120, 112, 100}};
+};
+
+/// Ground truth of one brick in one rendered frame.
+struct BrickTruth
+{
+  int instance_id = 0;  // value of this brick in the instance label image (1-based)
+  std::string type;
+  Eigen::Vector3d dimensions_m = Eigen::Vector3d::Zero();
+  Eigen::Isometry3d camera_T_brick = Eigen::Isometry3d::Identity();
+  /// Visible pixels of the top face over the pixels it would cover if nothing
+  /// occluded it and the image were unbounded (0..1).
+  double visible_fraction = 0.0;
+  int visible_top_pixels = 0;
+};
+
+/// Faces of a cuboid, as stored in the face label image.
+enum class CuboidFace : unsigned char
+{
+  kNone = 0,
+  kTop = 1,     // +z, the plate
+  kBottom = 2,  // -z
+  kPlusX = 3,
+  kMinusX = 4,
+  kPlusY = 5,
+  kMinusY = 6,
+};
+
+/// The four corners of the top face in the brick frame, counter-clockwise
+/// seen from +z: (+x,+y), (-x,+y), (-x,-y), (+x,-y).
+std::array<Eigen::Vector3d, 4> topFaceCornersInBrick(const BrickType& type);
+
+/// The eight corners of the body in the brick frame.
+std::array<Eigen::Vector3d, 8> cuboidCornersInBrick(const BrickType& type);
+
+/// Top-face corners expressed in the camera frame.
+std::array<Eigen::Vector3d, 4> topFaceCornersInCamera(const BrickTruth& truth);
+}  // namespace sim
+}  // namespace brick_pose

@@ -1,0 +1,242 @@
+#include "brick_pose/sim/scene_generator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "brick_pose/common/errors.h"
+#include "brick_pose/sim/fast_random.h"
+
+namespace brick_pose
+{
+namespace sim
+{
+namespace
+{
+constexpr double kDegToRad = M_PI / 180.0;
+
+Eigen::Isometry3d brickPose(const Eigen::Vector3d& top_centre_world, double yaw_rad,
+                            const Eigen::Vector3d& tilt_axis = Eigen::Vector3d::UnitX(), double tilt_rad = 0.0)
+{
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = (Eigen::AngleAxisd(tilt_rad, tilt_axis.normalized()) * Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()))
+                      .toRotationMatrix();
+  pose.translation() = top_centre_world;
+  return pose;
+}
+
+/// Lifts a (possibly tilted) brick so that its lowest corner rests at `floor_z`.
+void restOn(PlacedBrick& brick, double floor_z)
+{
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& corner : cuboidCornersInBrick(brick.type))
+    lowest = std::min(lowest, (brick.world_T_brick * corner).z());
+  brick.world_T_brick.translation().z() += floor_z - lowest;
+}
+
+/// Highest top surface among `placed` under the footprint of `brick`, sampled
+/// on a grid over its footprint (0 = the ground).
+double supportHeight(const PlacedBrick& brick, const std::vector<PlacedBrick>& placed)
+{
+  double height = 0.0;
+  const double half_l = 0.5 * brick.type.length_m, half_w = 0.5 * brick.type.width_m;
+  for (int i = 0; i <= 6; ++i)
+    for (int j = 0; j <= 3; ++j)
+    {
+      const Eigen::Vector3d sample_brick(-half_l + 2.0 * half_l * i / 6.0, -half_w + 2.0 * half_w * j / 3.0, 0.0);
+      const Eigen::Vector3d sample_world = brick.world_T_brick * sample_brick;
+      for (const PlacedBrick& other : placed)
+      {
+        const Eigen::Vector3d local = other.world_T_brick.inverse() * sample_world;
+        if (std::abs(local.x()) <= 0.5 * other.type.length_m && std::abs(local.y()) <= 0.5 * other.type.width_m)
+          height = std::max(height, other.world_T_brick.translation().z());
+      }
+    }
+  return height;
+}
+
+class Builder
+{
+public:
+  Builder(const BrickCatalogue& catalogue, const SceneParams& params, std::uint64_t seed)
+    : catalogue_(catalogue), params_(params), random_(seed)
+  {
+  }
+
+  Scene build()
+  {
+    Scene scene;
+    switch (params_.kind)
+    {
+      case SceneKind::kOrganisedPile:
+        scene.bricks = organisedPile();
+        break;
+      case SceneKind::kUnorganisedPile:
+        scene.bricks = unorganisedPile();
+        break;
+      case SceneKind::kSingle:
+      default:
+        scene.bricks = {singleBrick()};
+        break;
+    }
+    scene.world_T_camera = cameraLookingAt(scene.bricks);
+    return scene;
+  }
+
+private:
+  const BrickType& randomType()
+  {
+    if (params_.types.empty())
+      return catalogue_.types()[random_.next() % catalogue_.types().size()];
+    return catalogue_.at(params_.types[random_.next() % params_.types.size()]);
+  }
+
+  Eigen::Vector3d randomHorizontalAxis()
+  {
+    const double angle = random_.uniform(0.0, 2.0 * M_PI);
+    return {std::cos(angle), std::sin(angle), 0.0};
+  }
+
+  PlacedBrick singleBrick()
+  {
+    PlacedBrick brick{randomType(), {}};
+    const double tilt_rad = random_.uniform(0.0, params_.max_tilt_deg) * kDegToRad;
+    brick.world_T_brick =
+        brickPose(Eigen::Vector3d::Zero(), random_.uniform(-M_PI, M_PI), randomHorizontalAxis(), tilt_rad);
+    restOn(brick, 0.0);
+    return brick;
+  }
+
+  std::vector<PlacedBrick> organisedPile()
+  {
+    // Rows of identical bricks side by side along y, layers stacked on top.
+    const BrickType& type = randomType();
+    const int rows = 1 + static_cast<int>(random_.next() % params_.max_rows);
+    const int layers = 1 + static_cast<int>(random_.next() % params_.max_layers);
+    const double pile_yaw = random_.uniform(-M_PI, M_PI);
+    const double gap_m = random_.uniform(0.01, 0.03);
+    std::vector<PlacedBrick> bricks;
+    for (int layer = 0; layer < layers; ++layer)
+      for (int row = 0; row < rows; ++row)
+      {
+        const double y = (row - 0.5 * (rows - 1)) * (type.width_m + gap_m) + random_.uniform(-0.005, 0.005);
+        const double x = random_.uniform(-0.01, 0.01);
+        const Eigen::Vector3d local(x, y, (layer + 1) * type.height_m);
+        const Eigen::Vector3d world = Eigen::AngleAxisd(pile_yaw, Eigen::Vector3d::UnitZ()) * local;
+        const double yaw = pile_yaw + random_.uniform(-2.0, 2.0) * kDegToRad;
+        bricks.push_back({type, brickPose(world, yaw)});
+      }
+    return bricks;
+  }
+
+  std::vector<PlacedBrick> unorganisedPile()
+  {
+    const int count = 2 + static_cast<int>(random_.next() % std::max(1, params_.max_pile_bricks - 1));
+    std::vector<PlacedBrick> bricks;
+    for (int i = 0; i < count; ++i)
+    {
+      PlacedBrick brick{randomType(), {}};
+      const double radius_m = 0.25 + 0.15 * count;
+      const Eigen::Vector3d drop(random_.uniform(-radius_m, radius_m) * 0.5, random_.uniform(-radius_m, radius_m) * 0.5, 0.0);
+      const double yaw_rad = random_.uniform(-M_PI, M_PI);
+      brick.world_T_brick = brickPose(drop, yaw_rad);
+      const double support = supportHeight(brick, bricks);
+      // A brick resting on others lies a little tilted; one on the ground lies flat.
+      const double tilt_rad = support > 0.0 ? random_.uniform(0.0, params_.max_tilt_deg) * kDegToRad : 0.0;
+      brick.world_T_brick = brickPose(drop, yaw_rad, randomHorizontalAxis(), tilt_rad);
+      restOn(brick, supportHeight(brick, bricks));
+      bricks.push_back(brick);
+    }
+    return bricks;
+  }
+
+  Eigen::Isometry3d cameraLookingAt(const std::vector<PlacedBrick>& bricks)
+  {
+    Eigen::Vector3d target = Eigen::Vector3d::Zero();
+    double top_z = 0.0;
+    for (const PlacedBrick& brick : bricks)
+    {
+      target += brick.world_T_brick.translation();
+      top_z = std::max(top_z, brick.world_T_brick.translation().z());
+    }
+    target /= static_cast<double>(bricks.size());
+    target.z() = top_z;
+    return lookAt(target, random_.uniform(params_.min_distance_m, params_.max_distance_m),
+                  random_.uniform(params_.min_elevation_deg, params_.max_elevation_deg), random_.uniform(-180.0, 180.0));
+  }
+
+  const BrickCatalogue& catalogue_;
+  const SceneParams& params_;
+  FastRandom random_;
+};
+}  // namespace
+
+SceneKind sceneKindFromString(const std::string& name)
+{
+  if (name == "single") return SceneKind::kSingle;
+  if (name == "organised_pile") return SceneKind::kOrganisedPile;
+  if (name == "unorganised_pile") return SceneKind::kUnorganisedPile;
+  throw ConfigError("scene kind: unknown '" + name + "' (expected single, organised_pile or unorganised_pile)");
+}
+
+std::string toString(SceneKind kind)
+{
+  switch (kind)
+  {
+    case SceneKind::kOrganisedPile:
+      return "organised_pile";
+    case SceneKind::kUnorganisedPile:
+      return "unorganised_pile";
+    case SceneKind::kSingle:
+    default:
+      return "single";
+  }
+}
+
+void SceneParams::validate(const BrickCatalogue& catalogue) const
+{
+  auto check = [](bool ok, const std::string& message) {
+    if (!ok) throw ConfigError("scene: " + message);
+  };
+  check(!catalogue.empty(), "the brick catalogue is empty");
+  for (const std::string& type : types)
+    catalogue.at(type);  // throws naming the unknown type
+  check(min_distance_m > 0.0 && max_distance_m >= min_distance_m, "need 0 < min_distance_m <= max_distance_m");
+  check(min_elevation_deg > 0.0 && max_elevation_deg <= 89.9 && min_elevation_deg <= max_elevation_deg,
+        "need 0 < min_elevation_deg <= max_elevation_deg <= 89.9");
+  check(max_tilt_deg >= 0.0 && max_tilt_deg < 60.0, "max_tilt_deg must be in [0, 60)");
+  check(max_pile_bricks >= 2, "max_pile_bricks must be >= 2");
+  check(max_rows >= 1 && max_layers >= 1, "max_rows and max_layers must be >= 1");
+}
+
+SceneGenerator::SceneGenerator(BrickCatalogue catalogue, SceneParams params)
+  : catalogue_(std::move(catalogue)), params_(std::move(params))
+{
+  params_.validate(catalogue_);
+}
+
+Scene SceneGenerator::generate(std::uint64_t seed) const
+{
+  return Builder(catalogue_, params_, seed).build();
+}
+
+Eigen::Isometry3d lookAt(const Eigen::Vector3d& target_world, double distance_m, double elevation_deg,
+                         double azimuth_deg)
+{
+  const double elevation = elevation_deg * kDegToRad, azimuth = azimuth_deg * kDegToRad;
+  // Optical axis pointing from the camera to the target.
+  const Eigen::Vector3d forward(-std::cos(elevation) * std::cos(azimuth), -std::cos(elevation) * std::sin(azimuth),
+                                -std::sin(elevation));
+  // Right = forward x up; at straight-down views fall back to the azimuth.
+  Eigen::Vector3d right = forward.cross(Eigen::Vector3d::UnitZ());
+  if (right.norm() < 1e-6) right = Eigen::Vector3d(-std::sin(azimuth), std::cos(azimuth), 0.0);
+  right.normalize();
+  const Eigen::Vector3d down = forward.cross(right);
+  Eigen::Isometry3d world_T_camera = Eigen::Isometry3d::Identity();
+  world_T_camera.linear().col(0) = right;
+  world_T_camera.linear().col(1) = down;
+  world_T_camera.linear().col(2) = forward;
+  world_T_camera.translation() = target_world - distance_m * forward;
+  return world_T_camera;
+}
+}  // namespace sim
+}  // namespace brick_pose
