@@ -1,0 +1,31 @@
+#pragma once
+// Inverse projection of an RgbdFrame into point clouds (paper eq. 2-4):
+// X = (u - cx) Z / fx, Y = (v - cy) Z / fy, Z = depth(u, v).
+
+#include <vector>
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include "brick_pose/frame/rgbd_frame.h"
+
+namespace brick_pose
+{
+/// The organised XYZRGB cloud of the whole frame (width x height, point
+/// index = v * width + u); holes are NaN points, so the cloud is not dense.
+pcl::PointCloud<pcl::PointXYZRGB>::Ptr makeOrganizedCloud(const RgbdFrame& frame);
+
+/// The 3D points of the given pixels (index = v * width + u) that have
+/// depth, in the given order; pixels without depth are skipped. When
+/// `kept_pixels` is given it receives the pixel index of every output point.
+pcl::PointCloud<pcl::PointXYZ>::Ptr backProjectPixels(const RgbdFrame& frame,
+                                                      const std::vector<int>& pixel_indices,
+                                                      std::vector<int>* kept_pixels = nullptr);
+
+/// An organised cloud of every `stride`-th pixel in both directions
+/// (width/stride x height/stride), NaN for holes. `source_pixels` (same size as
+/// the cloud) receives the full-resolution pixel index of each point. Used to
+/// keep the pixel footprint of colour-free segments without a voxel grid.
+pcl::PointCloud<pcl::PointXYZ>::Ptr makeStridedCloud(const RgbdFrame& frame, int stride,
+                                                     std::vector<int>& source_pixels);
+}  // namespace brick_pose

@@ -1,0 +1,58 @@
+#pragma once
+// A segment that passed ROI filtration: everything the pose stage needs about
+// one visible brick top face, in the camera optical frame.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include "brick_pose/roi/least_area_quad.h"
+#include "brick_pose/roi/oriented_bounding_box.h"
+#include "brick_pose/roi/plane_fit.h"
+
+namespace brick_pose
+{
+struct BrickCandidate
+{
+  std::string type_name;
+
+  /// Segment points after cloud processing (camera frame, metres).
+  pcl::PointCloud<pcl::PointXYZ>::Ptr points;
+  /// MLS-smoothed points with normals; null when MLS is disabled.
+  pcl::PointCloud<pcl::PointNormal>::Ptr smoothed_points;
+  /// Image pixels of the segment that have depth (v * width + u).
+  std::vector<int> pixel_indices;
+  int area_px = 0;  ///< Mask pixels, with or without depth.
+
+  OrientedBoundingBox obb;  ///< PCA box of `points`.
+  PlaneFit plane;           ///< Least-squares plane of `points`, normal toward the camera.
+
+  /// Least-area quadrilateral, clockwise on screen, starting with a long
+  /// edge: corners 0->1 and 2->3 are the long edges (measured in 3D); of the
+  /// two possible starts the one higher in the image (smaller v) is taken.
+  QuadCorners corners_px;
+  /// The corners' rays intersected with `plane`.
+  std::array<Eigen::Vector3d, 4> corners_m;
+
+  /// Centre of the face: the quad's diagonal intersection on the plane.
+  Eigen::Vector2d centroid_px = Eigen::Vector2d::Zero();
+  Eigen::Vector3d centroid_m = Eigen::Vector3d::Zero();
+  /// Points on the long axis at +/- length/4 from the centre (T1 toward the
+  /// middle of edge 1->2, T2 toward the middle of edge 3->0).
+  Eigen::Vector2d t1_px = Eigen::Vector2d::Zero();
+  Eigen::Vector2d t2_px = Eigen::Vector2d::Zero();
+  Eigen::Vector3d t1_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d t2_m = Eigen::Vector3d::Zero();
+
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< Unit, toward the camera.
+  double length_m = 0.0;  ///< Mean of the two long quad edges in 3D.
+  double width_m = 0.0;   ///< Mean of the two short quad edges in 3D.
+  /// True when length and width match the catalogue type within tolerance
+  /// (false for a partly occluded face that was still accepted).
+  bool complete = false;
+};
+}  // namespace brick_pose

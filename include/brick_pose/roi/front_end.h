@@ -1,0 +1,87 @@
+#pragma once
+// The perception front end: segmentation, cloud processing and ROI
+// filtration of one RgbdFrame, returning brick candidates, per-stage timings
+// and the reasons segments were dropped.
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "brick_pose/catalogue/brick_catalogue.h"
+#include "brick_pose/cloud/cloud_processor.h"
+#include "brick_pose/frame/rgbd_frame.h"
+#include "brick_pose/roi/brick_candidate.h"
+#include "brick_pose/roi/roi_filter.h"
+#include "brick_pose/segmentation/hsv_segmenter.h"
+#include "brick_pose/segmentation/region_growing_segmenter.h"
+
+namespace brick_pose
+{
+enum class SegmentationMode
+{
+  kHsv,            ///< Plate colour per catalogue type (default, fast).
+  kRegionGrowing,  ///< Colour-free planar faces classified by size.
+};
+
+/// "hsv" or "region_growing"; throws ConfigError for anything else.
+SegmentationMode parseSegmentationMode(const std::string& name);
+std::string toString(SegmentationMode mode);
+
+struct FrontEndParams
+{
+  SegmentationMode mode = SegmentationMode::kHsv;
+  HsvSegmenterParams hsv;
+  RegionGrowingParams region_growing;
+  /// Applied to each segment's points, not to the whole frame. Defaults
+  /// keep the front end fast: crop and a 5 mm voxel grid on, SOR and MLS off
+  /// (the plane fit already rejects outliers).
+  CloudProcessorParams cloud = defaultSegmentCloudParams();
+  RoiFilterParams roi;
+
+  static CloudProcessorParams defaultSegmentCloudParams();
+};
+
+/// Wall time of each stage of one frame, milliseconds.
+struct FrontEndTimings
+{
+  double segmentation_ms = 0.0;
+  CloudProcessingTimings cloud;  ///< Summed over segments.
+  double roi_ms = 0.0;           ///< ROI filtration without the cloud processing inside it.
+  double total_ms = 0.0;
+};
+
+/// A segment that was not a brick, and why.
+struct Rejection
+{
+  std::string type_name;  ///< Empty for colour-free segments.
+  cv::Rect bounding_box_px;
+  int area_px = 0;
+  std::string reason;
+};
+
+struct FrontEndResult
+{
+  std::vector<BrickCandidate> candidates;
+  std::vector<Rejection> rejections;
+  FrontEndTimings timings;
+};
+
+class FrontEnd
+{
+public:
+  /// Throws ConfigError for an empty catalogue or a bad parameter.
+  FrontEnd(const BrickCatalogue& catalogue, const FrontEndParams& params = FrontEndParams());
+
+  FrontEndResult process(const RgbdFrame& frame) const;
+
+  const FrontEndParams& params() const { return params_; }
+
+private:
+  BrickCatalogue catalogue_;
+  FrontEndParams params_;
+  HsvSegmenter hsv_segmenter_;
+  RegionGrowingSegmenter region_growing_segmenter_;
+  RoiFilter roi_filter_;
+};
+}  // namespace brick_pose

@@ -1,0 +1,61 @@
+#pragma once
+// ROI filtration (paper section "ROI Filtration"): turns one segment into a
+// BrickCandidate, or says why it is not one. Plane and OBB come from the 3D
+// points; the outline geometry (least-area quad, T1, T2, centre) from the
+// mask, lifted to 3D by intersecting pixel rays with the segment's plane,
+// which is more accurate than any single depth pixel.
+
+#include <optional>
+#include <string>
+#include <variant>
+
+#include <Eigen/Core>
+
+#include "brick_pose/catalogue/brick_catalogue.h"
+#include "brick_pose/cloud/cloud_processor.h"
+#include "brick_pose/frame/rgbd_frame.h"
+#include "brick_pose/roi/brick_candidate.h"
+#include "brick_pose/segmentation/segment.h"
+
+namespace brick_pose
+{
+struct RoiFilterParams
+{
+  int min_points = 50;            ///< Segments with fewer depth pixels are dropped.
+  double max_plane_rms_m = 0.015; ///< A top face is planar; more means a bent/merged segment.
+  DimensionTolerance dimensions;  ///< Check of the quad's length/width and the OBB thickness.
+  /// Colour-free segments get the type whose length and width are both
+  /// within this distance (closest wins); they must be complete faces.
+  double classification_tolerance_m = 0.05;
+  /// Optional "up" direction (unit, camera frame, e.g. from tf). When set
+  /// (non-zero), faces whose normal is more than max_tilt_deg from it are not
+  /// top faces and are dropped.
+  Eigen::Vector3d up_direction = Eigen::Vector3d::Zero();
+  double max_tilt_deg = 30.0;
+  PlaneFitParams plane;
+  QuadFitParams quad;
+};
+
+/// Either a candidate or the reason the segment was dropped.
+using RoiResult = std::variant<BrickCandidate, std::string>;
+
+class RoiFilter
+{
+public:
+  RoiFilter(const BrickCatalogue& catalogue, const RoiFilterParams& params, const CloudProcessorParams& cloud_params);
+
+  /// Filters one segment. HSV segments are checked against their type;
+  /// colour-free ones are classified by their dimensions.
+  /// `cloud_timings` (optional) accumulates the cloud-processing time.
+  RoiResult filter(const RgbdFrame& frame, const Segment& segment, CloudProcessingTimings* cloud_timings = nullptr) const;
+
+private:
+  /// Quad, corners, T1/T2, centre and dimensions from the mask and the plane.
+  std::optional<std::string> fitOutline(const RgbdFrame& frame, const Segment& segment, BrickCandidate& candidate) const;
+  std::optional<std::string> assignType(const Segment& segment, BrickCandidate& candidate) const;
+
+  BrickCatalogue catalogue_;
+  RoiFilterParams params_;
+  CloudProcessor cloud_processor_;
+};
+}  // namespace brick_pose

@@ -1,0 +1,28 @@
+#pragma once
+// A segment: the pixels (and through them the organised-cloud points) that
+// one segmenter believes belong to a single brick face.
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+namespace brick_pose
+{
+struct Segment
+{
+  /// Brick type the colour matched (HSV); empty for colour-free segments.
+  std::string type_name;
+  /// Indices into the organised cloud / image (v * width + u) of the segment
+  /// pixels that have depth.
+  std::vector<int> pixel_indices;
+  /// Pixel footprint: CV_8UC1, 255 inside, covering `bounding_box_px` of the
+  /// image. Includes pixels without depth (the outline comes from the image).
+  cv::Mat mask;
+  cv::Rect bounding_box_px;
+  /// Number of non-zero mask pixels.
+  int area_px = 0;
+};
+}  // namespace brick_pose

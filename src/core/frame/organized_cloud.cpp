@@ -1,0 +1,142 @@
+#include "brick_pose/frame/organized_cloud.h"
+
+#include <cmath>
+#include <limits>
+
+#include "brick_pose/common/errors.h"
+
+namespace brick_pose
+{
+namespace
+{
+/// (u - cx) / fx for every column and (v - cy) / fy for every row: the
+/// inverse projection then costs two multiplications per pixel.
+struct RayFactors
+{
+  std::vector<float> x_per_column;
+  std::vector<float> y_per_row;
+
+  RayFactors(const PinholeCamera& camera, int width_px, int height_px)
+    : x_per_column(static_cast<std::size_t>(width_px)), y_per_row(static_cast<std::size_t>(height_px))
+  {
+    for (int u = 0; u < width_px; ++u)
+      x_per_column[u] = static_cast<float>((u - camera.cx_px) / camera.fx_px);
+    for (int v = 0; v < height_px; ++v)
+      y_per_row[v] = static_cast<float>((v - camera.cy_px) / camera.fy_px);
+  }
+};
+}  // namespace
+
+pcl::PointCloud<pcl::PointXYZRGB>::Ptr makeOrganizedCloud(const RgbdFrame& frame)
+{
+  const int width = frame.width_px();
+  const int height = frame.height_px();
+  const RayFactors factors(frame.camera, width, height);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+
+  pcl::PointCloud<pcl::PointXYZRGB>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZRGB>);
+  cloud->resize(static_cast<std::size_t>(width) * height);
+  cloud->width = static_cast<std::uint32_t>(width);
+  cloud->height = static_cast<std::uint32_t>(height);
+  cloud->is_dense = false;
+  cloud->header.frame_id = frame.frame_id;
+  cloud->header.stamp = static_cast<std::uint64_t>(frame.stamp_ns / 1000);  // PCL stamps are µs
+
+  pcl::PointXYZRGB* out = cloud->points.data();
+  for (int v = 0; v < height; ++v)
+  {
+    const float* depth_row = frame.depth_m.ptr<float>(v);
+    const std::uint8_t* rgb_row = frame.rgb.ptr<std::uint8_t>(v);
+    const float y_factor = factors.y_per_row[v];
+    for (int u = 0; u < width; ++u, ++out)
+    {
+      const float z = depth_row[u];
+      out->r = rgb_row[3 * u];
+      out->g = rgb_row[3 * u + 1];
+      out->b = rgb_row[3 * u + 2];
+      out->a = 255;
+      if (std::isnan(z))
+      {
+        out->x = out->y = out->z = nan;
+        continue;
+      }
+      out->x = factors.x_per_column[u] * z;
+      out->y = y_factor * z;
+      out->z = z;
+    }
+  }
+  return cloud;
+}
+
+pcl::PointCloud<pcl::PointXYZ>::Ptr backProjectPixels(const RgbdFrame& frame,
+                                                      const std::vector<int>& pixel_indices,
+                                                      std::vector<int>* kept_pixels)
+{
+  const int width = frame.width_px();
+  const int pixel_count = width * frame.height_px();
+  const double fx_inv = 1.0 / frame.camera.fx_px;
+  const double fy_inv = 1.0 / frame.camera.fy_px;
+  const float* depth = frame.depth_m.ptr<float>(0);  // validated frames are continuous
+  const bool continuous = frame.depth_m.isContinuous();
+
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+  cloud->reserve(pixel_indices.size());
+  if (kept_pixels) kept_pixels->clear();
+  for (const int index : pixel_indices)
+  {
+    if (index < 0 || index >= pixel_count) throw InputError("backProjectPixels: pixel index out of range");
+    const int v = index / width;
+    const int u = index - v * width;
+    const float z = continuous ? depth[index] : frame.depthAt(u, v);
+    if (std::isnan(z)) continue;
+    cloud->push_back(pcl::PointXYZ(static_cast<float>((u - frame.camera.cx_px) * fx_inv * z),
+                                   static_cast<float>((v - frame.camera.cy_px) * fy_inv * z), z));
+    if (kept_pixels) kept_pixels->push_back(index);
+  }
+  cloud->header.frame_id = frame.frame_id;
+  cloud->is_dense = true;
+  return cloud;
+}
+
+pcl::PointCloud<pcl::PointXYZ>::Ptr makeStridedCloud(const RgbdFrame& frame, int stride,
+                                                     std::vector<int>& source_pixels)
+{
+  if (stride < 1) throw InputError("makeStridedCloud: stride must be >= 1");
+  const int width = frame.width_px();
+  const int out_width = (width + stride - 1) / stride;
+  const int out_height = (frame.height_px() + stride - 1) / stride;
+  const RayFactors factors(frame.camera, width, frame.height_px());
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+  cloud->resize(static_cast<std::size_t>(out_width) * out_height);
+  cloud->width = static_cast<std::uint32_t>(out_width);
+  cloud->height = static_cast<std::uint32_t>(out_height);
+  cloud->is_dense = false;
+  cloud->header.frame_id = frame.frame_id;
+  source_pixels.resize(cloud->size());
+
+  std::size_t i = 0;
+  for (int row = 0; row < out_height; ++row)
+  {
+    const int v = row * stride;
+    const float* depth_row = frame.depth_m.ptr<float>(v);
+    for (int col = 0; col < out_width; ++col, ++i)
+    {
+      const int u = col * stride;
+      source_pixels[i] = v * width + u;
+      pcl::PointXYZ& point = (*cloud)[i];
+      const float z = depth_row[u];
+      if (std::isnan(z))
+      {
+        point.x = point.y = point.z = nan;
+        continue;
+      }
+      point.x = factors.x_per_column[u] * z;
+      point.y = factors.y_per_row[v] * z;
+      point.z = z;
+    }
+  }
+  return cloud;
+}
+}  // namespace brick_pose

@@ -1,0 +1,168 @@
+#include "brick_pose/roi/roi_filter.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "brick_pose/frame/organized_cloud.h"
+
+namespace brick_pose
+{
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+
+std::string describe(const std::string& what, double value, const std::string& rule, double limit)
+{
+  std::ostringstream text;
+  text.precision(3);
+  text << what << " " << value << " " << rule << " " << limit;
+  return text.str();
+}
+
+template <typename T>
+std::array<T, 4> rotated(const std::array<T, 4>& values, int start)
+{
+  std::array<T, 4> out;
+  for (int k = 0; k < 4; ++k) out[k] = values[(start + k) % 4];
+  return out;
+}
+
+/// Index (0 or 1) of the corner starting the first long edge of a
+/// clockwise quad, then moved to the upper of the two long edges.
+int longEdgeStart(const QuadCorners& corners_px, const std::array<Eigen::Vector3d, 4>& corners_m)
+{
+  auto edge = [&](int k) { return (corners_m[(k + 1) % 4] - corners_m[k]).norm(); };
+  const int start = edge(0) + edge(2) >= edge(1) + edge(3) ? 0 : 1;
+  const Eigen::Vector2d& a = corners_px[start];
+  const Eigen::Vector2d& b = corners_px[start + 2];
+  const bool a_first = a.y() < b.y() - 1e-9 || (std::abs(a.y() - b.y()) <= 1e-9 && a.x() <= b.x());
+  return a_first ? start : start + 2;
+}
+}  // namespace
+
+RoiFilter::RoiFilter(const BrickCatalogue& catalogue, const RoiFilterParams& params,
+                     const CloudProcessorParams& cloud_params)
+  : catalogue_(catalogue), params_(params), cloud_processor_(cloud_params)
+{
+}
+
+RoiResult RoiFilter::filter(const RgbdFrame& frame, const Segment& segment, CloudProcessingTimings* cloud_timings) const
+{
+  if (static_cast<int>(segment.pixel_indices.size()) < params_.min_points)
+    return describe("only", static_cast<double>(segment.pixel_indices.size()), "depth pixels, need",
+                    params_.min_points);
+
+  BrickCandidate candidate;
+  candidate.pixel_indices = segment.pixel_indices;
+  candidate.area_px = segment.area_px;
+  const pcl::PointCloud<pcl::PointXYZ>::Ptr raw = backProjectPixels(frame, segment.pixel_indices);
+  ProcessedCloud processed = cloud_processor_.process(raw);
+  if (cloud_timings)
+  {
+    cloud_timings->crop_ms += processed.timings.crop_ms;
+    cloud_timings->voxel_ms += processed.timings.voxel_ms;
+    cloud_timings->outlier_removal_ms += processed.timings.outlier_removal_ms;
+    cloud_timings->mls_ms += processed.timings.mls_ms;
+  }
+  candidate.points = processed.points;
+  candidate.smoothed_points = processed.with_normals;
+  if (static_cast<int>(candidate.points->size()) < 3) return std::string("no points left after cloud processing");
+
+  candidate.plane = fitPlane(*candidate.points, params_.plane);
+  if (!candidate.plane.valid) return std::string("points are collinear: no plane");
+  if (candidate.plane.rms_m > params_.max_plane_rms_m)
+    return describe("plane rms", candidate.plane.rms_m, "m exceeds", params_.max_plane_rms_m);
+  candidate.normal = candidate.plane.normal;
+  if (params_.up_direction.norm() > 0.0)
+  {
+    const double cos_tilt = candidate.normal.dot(params_.up_direction.normalized());
+    const double tilt_deg = std::acos(std::max(-1.0, std::min(1.0, cos_tilt))) * 180.0 / kPi;
+    if (tilt_deg > params_.max_tilt_deg) return describe("face tilt", tilt_deg, "deg exceeds", params_.max_tilt_deg);
+  }
+
+  candidate.obb = computeOrientedBoundingBox(*candidate.points);
+  if (auto reason = fitOutline(frame, segment, candidate)) return *reason;
+  if (auto reason = assignType(segment, candidate)) return *reason;
+  return candidate;
+}
+
+std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const Segment& segment,
+                                                 BrickCandidate& candidate) const
+{
+  const std::vector<cv::Point> outline = largestOutline(segment.mask, segment.bounding_box_px.tl());
+  const std::optional<QuadCorners> quad = fitLeastAreaQuad(outline, params_.quad);
+  if (!quad) return std::string("outline has no enclosing quadrilateral");
+
+  const PinholeCamera& camera = frame.camera;
+  std::array<Eigen::Vector3d, 4> corners_m;
+  for (int k = 0; k < 4; ++k)
+    if (!candidate.plane.intersectRay(camera.ray((*quad)[k].x(), (*quad)[k].y()), corners_m[k]))
+      return std::string("a quad corner's ray misses the segment plane");
+
+  const int start = longEdgeStart(*quad, corners_m);
+  candidate.corners_px = rotated(*quad, start);
+  candidate.corners_m = rotated(corners_m, start);
+  const auto& c = candidate.corners_m;
+  candidate.length_m = 0.5 * ((c[1] - c[0]).norm() + (c[2] - c[3]).norm());
+  candidate.width_m = 0.5 * ((c[2] - c[1]).norm() + (c[3] - c[0]).norm());
+
+  // The diagonals' intersection is the perspective image of the face centre.
+  candidate.centroid_px = diagonalIntersection(candidate.corners_px);
+  if (!candidate.plane.intersectRay(camera.ray(candidate.centroid_px.x(), candidate.centroid_px.y()),
+                                    candidate.centroid_m))
+    return std::string("the quad centre's ray misses the segment plane");
+  const Eigen::Vector3d long_axis = ((c[1] - c[0]) + (c[2] - c[3])).normalized();
+  candidate.t1_m = candidate.centroid_m + 0.25 * candidate.length_m * long_axis;
+  candidate.t2_m = candidate.centroid_m - 0.25 * candidate.length_m * long_axis;
+  candidate.t1_px = camera.project(candidate.t1_m);
+  candidate.t2_px = camera.project(candidate.t2_m);
+  return std::nullopt;
+}
+
+std::optional<std::string> RoiFilter::assignType(const Segment& segment, BrickCandidate& candidate) const
+{
+  const DimensionTolerance& tolerance = params_.dimensions;
+  const double thickness_m = candidate.obb.valid ? candidate.obb.extents_m.z() : 0.0;
+  auto complete = [&](const BrickType& type, double tolerance_m) {
+    return std::abs(candidate.length_m - type.length_m) <= tolerance_m &&
+           std::abs(candidate.width_m - type.width_m) <= tolerance_m;
+  };
+
+  if (!segment.type_name.empty())
+  {
+    const BrickType* type = catalogue_.find(segment.type_name);
+    if (!type) return "unknown brick type '" + segment.type_name + "'";
+    if (auto reason = checkTopFaceDimensions(candidate.length_m, candidate.width_m, thickness_m, *type, tolerance))
+      return segment.type_name + ": " + *reason;
+    candidate.type_name = type->name;
+    candidate.complete = complete(*type, tolerance.tolerance_m);
+    return std::nullopt;
+  }
+
+  // Colour-free: only whole faces can be told apart by size.
+  if (thickness_m > tolerance.max_thickness_m)
+    return describe("thickness", thickness_m, "m exceeds", tolerance.max_thickness_m);
+  const BrickType* best = nullptr;
+  double best_error_m = std::numeric_limits<double>::max();
+  for (const BrickType& type : catalogue_.types())
+  {
+    const double error_m = std::abs(candidate.length_m - type.length_m) + std::abs(candidate.width_m - type.width_m);
+    if (complete(type, params_.classification_tolerance_m) && error_m < best_error_m)
+    {
+      best = &type;
+      best_error_m = error_m;
+    }
+  }
+  if (!best)
+  {
+    std::ostringstream text;
+    text.precision(3);
+    text << "face " << candidate.length_m << " x " << candidate.width_m << " m matches no catalogue type";
+    return text.str();
+  }
+  candidate.type_name = best->name;
+  candidate.complete = true;
+  return std::nullopt;
+}
+}  // namespace brick_pose
