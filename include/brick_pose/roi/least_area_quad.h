@@ -36,10 +36,12 @@ struct QuadFitParams
   double max_refinement_shift_px = 4.0;
 };
 
-/// Reduces a convex polygon (any orientation) to 4 vertices by repeatedly
-/// replacing the edge whose removal (extending its two neighbouring edges to
-/// their intersection) adds the least area. Empty when no enclosing
-/// quadrilateral exists that way (e.g. a triangle).
+/// The least-area enclosing quadrilateral of a convex polygon (any
+/// orientation): edges are removed greedily (each time the one whose removal,
+/// by extending its two neighbouring edges to their intersection, adds the
+/// least area) down to 12, then the best four of the remaining edges are
+/// chosen exhaustively. Empty when no enclosing quadrilateral exists (a
+/// triangle, or edges that cannot close four sides).
 std::optional<QuadCorners> reduceToLeastAreaQuad(const std::vector<Eigen::Vector2d>& convex_polygon);
 
 /// The refined least-area quadrilateral of a closed outline (image pixels,

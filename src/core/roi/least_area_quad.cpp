@@ -26,6 +26,80 @@ bool intersectLines(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Ei
   return true;
 }
 
+constexpr std::size_t kExhaustiveEdgeCount = 12;
+
+/// Replaces the polygon edge whose removal (extending its neighbouring
+/// edges to their intersection) adds the least area; false when none can be.
+bool removeLeastAreaEdge(std::vector<Eigen::Vector2d>& polygon)
+{
+  const int n = static_cast<int>(polygon.size());
+  double best_area = std::numeric_limits<double>::max();
+  int best_edge = -1;
+  Eigen::Vector2d best_vertex;
+  for (int i = 0; i < n; ++i)
+  {
+    // Removing edge (b, c): extend (a, b) beyond b and (d, c) beyond c.
+    const Eigen::Vector2d& a = polygon[(i + n - 1) % n];
+    const Eigen::Vector2d& b = polygon[i];
+    const Eigen::Vector2d& c = polygon[(i + 1) % n];
+    const Eigen::Vector2d& d = polygon[(i + 2) % n];
+    double t = 0.0, s = 0.0;
+    if (!intersectLines(a, b, d, c, t, s) || t < 1.0 || s < 1.0) continue;
+    const Eigen::Vector2d vertex = a + t * (b - a);
+    const double added_area = 0.5 * std::abs(cross(vertex - b, c - b));
+    if (added_area < best_area)
+    {
+      best_area = added_area;
+      best_edge = i;
+      best_vertex = vertex;
+    }
+  }
+  if (best_edge < 0) return false;
+  polygon[best_edge] = best_vertex;
+  polygon.erase(polygon.begin() + (best_edge + 1) % n);
+  return true;
+}
+
+/// The least-area quadrilateral whose sides lie on four of the polygon's
+/// edges. Every edge line of a convex polygon supports it, so four of them
+/// enclose it whenever consecutive chosen edges turn by less than 180 deg.
+std::optional<QuadCorners> leastAreaQuadOnEdges(const std::vector<Eigen::Vector2d>& polygon)
+{
+  const int n = static_cast<int>(polygon.size());
+  double orientation = 0.0;
+  for (int i = 0; i < n; ++i) orientation += cross(polygon[i], polygon[(i + 1) % n]);
+  const double sign = orientation >= 0.0 ? 1.0 : -1.0;
+  auto direction = [&](int i) -> Eigen::Vector2d { return polygon[(i + 1) % n] - polygon[i]; };
+  auto corner = [&](int i, int j, Eigen::Vector2d& hit) {
+    if (sign * cross(direction(i), direction(j)) <= 0.0) return false;  // no bounded corner
+    double t = 0.0, s = 0.0;
+    if (!intersectLines(polygon[i], polygon[(i + 1) % n], polygon[j], polygon[(j + 1) % n], t, s)) return false;
+    hit = polygon[i] + t * direction(i);
+    return true;
+  };
+
+  std::optional<QuadCorners> best;
+  double best_area = std::numeric_limits<double>::max();
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      for (int k = j + 1; k < n; ++k)
+        for (int l = k + 1; l < n; ++l)
+        {
+          QuadCorners quad;
+          if (!corner(i, j, quad[0]) || !corner(j, k, quad[1]) || !corner(k, l, quad[2]) || !corner(l, i, quad[3]))
+            continue;
+          double twice_area = 0.0;
+          for (int m = 0; m < 4; ++m) twice_area += cross(quad[m], quad[(m + 1) % 4]);
+          const double area = 0.5 * std::abs(twice_area);
+          if (area < best_area)
+          {
+            best_area = area;
+            best = quad;
+          }
+        }
+  return best;
+}
+
 /// A line as a point and a unit direction.
 struct Line2
 {
@@ -115,37 +189,15 @@ std::optional<QuadCorners> reduceToLeastAreaQuad(const std::vector<Eigen::Vector
 {
   std::vector<Eigen::Vector2d> polygon = convex_polygon;
   if (polygon.size() < 4) return std::nullopt;
-  while (polygon.size() > 4)
+  // Greedy edge removal is cheap and harmless while the removed edges are the
+  // tiny steps of a pixel outline; near the end it can pick a wrong edge
+  // (e.g. short sides between chamfers), so the last few edges are chosen
+  // exhaustively instead.
+  while (polygon.size() > kExhaustiveEdgeCount)
   {
-    const int n = static_cast<int>(polygon.size());
-    double best_area = std::numeric_limits<double>::max();
-    int best_edge = -1;
-    Eigen::Vector2d best_vertex;
-    for (int i = 0; i < n; ++i)
-    {
-      // Removing edge (b, c): extend (a, b) beyond b and (d, c) beyond c.
-      const Eigen::Vector2d& a = polygon[(i + n - 1) % n];
-      const Eigen::Vector2d& b = polygon[i];
-      const Eigen::Vector2d& c = polygon[(i + 1) % n];
-      const Eigen::Vector2d& d = polygon[(i + 2) % n];
-      double t = 0.0, s = 0.0;
-      if (!intersectLines(a, b, d, c, t, s) || t < 1.0 || s < 1.0) continue;
-      const Eigen::Vector2d vertex = a + t * (b - a);
-      const double added_area = 0.5 * std::abs(cross(vertex - b, c - b));
-      if (added_area < best_area)
-      {
-        best_area = added_area;
-        best_edge = i;
-        best_vertex = vertex;
-      }
-    }
-    if (best_edge < 0) return std::nullopt;
-    polygon[best_edge] = best_vertex;
-    polygon.erase(polygon.begin() + (best_edge + 1) % n);
+    if (!removeLeastAreaEdge(polygon)) return std::nullopt;
   }
-  QuadCorners quad;
-  std::copy(polygon.begin(), polygon.end(), quad.begin());
-  return quad;
+  return leastAreaQuadOnEdges(polygon);
 }
 
 std::optional<QuadCorners> fitLeastAreaQuad(const std::vector<cv::Point>& outline, const QuadFitParams& params)

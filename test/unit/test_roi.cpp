@@ -1,0 +1,308 @@
+// ROI filtration: plane fit, OBB, least-area quadrilateral and the 3D
+// geometry of a candidate on synthetic plates with exact truth.
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "brick_pose/catalogue/brick_catalogue.h"
+#include "brick_pose/roi/least_area_quad.h"
+#include "brick_pose/roi/oriented_bounding_box.h"
+#include "brick_pose/roi/plane_fit.h"
+#include "brick_pose/roi/roi_filter.h"
+#include "brick_pose/segmentation/hsv_segmenter.h"
+#include "synthetic_plate_scene.h"
+
+namespace brick_pose
+{
+namespace
+{
+double degrees(double radians) { return radians * 180.0 / M_PI; }
+
+/// Grid of points on a rectangle L x W with frame `rotation` at `centre`.
+pcl::PointCloud<pcl::PointXYZ> rectanglePoints(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& centre,
+                                               double length_m, double width_m, double step_m,
+                                               double noise_m = 0.0, unsigned seed = 3)
+{
+  std::mt19937 generator(seed);
+  std::normal_distribution<double> noise(0.0, noise_m > 0.0 ? noise_m : 1.0);
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  for (double x = -0.5 * length_m; x <= 0.5 * length_m + 1e-9; x += step_m)
+    for (double y = -0.5 * width_m; y <= 0.5 * width_m + 1e-9; y += step_m)
+    {
+      const double z = noise_m > 0.0 ? noise(generator) : 0.0;
+      const Eigen::Vector3d p = centre + rotation * Eigen::Vector3d(x, y, z);
+      cloud.push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+    }
+  return cloud;
+}
+
+/// Mask of a quadrilateral in image pixels, sampled at pixel centres, with
+/// an optional notch (a polygon removed from it).
+cv::Mat rasterise(const std::array<Eigen::Vector2d, 4>& quad, cv::Size size,
+                  const std::vector<Eigen::Vector2d>& notch = {})
+{
+  auto inside = [](const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {
+    bool positive = false, negative = false;
+    for (std::size_t k = 0; k < polygon.size(); ++k)
+    {
+      const Eigen::Vector2d a = polygon[k], b = polygon[(k + 1) % polygon.size()];
+      const double c = (b - a).x() * (p - a).y() - (b - a).y() * (p - a).x();
+      positive |= c > 0.0;
+      negative |= c < 0.0;
+    }
+    return !(positive && negative);
+  };
+  const std::vector<Eigen::Vector2d> polygon(quad.begin(), quad.end());
+  cv::Mat mask = cv::Mat::zeros(size, CV_8UC1);
+  for (int v = 0; v < size.height; ++v)
+    for (int u = 0; u < size.width; ++u)
+    {
+      const Eigen::Vector2d p(u, v);
+      if (inside(polygon, p) && !(notch.size() >= 3 && inside(notch, p))) mask.at<std::uint8_t>(v, u) = 255;
+    }
+  return mask;
+}
+
+/// Largest distance from each truth corner to the nearest fitted corner.
+double worstCornerErrorPx(const QuadCorners& fitted, const std::array<Eigen::Vector2d, 4>& truth)
+{
+  double worst = 0.0;
+  for (const auto& t : truth)
+  {
+    double nearest = 1e9;
+    for (const auto& f : fitted) nearest = std::min(nearest, (f - t).norm());
+    worst = std::max(worst, nearest);
+  }
+  return worst;
+}
+
+std::array<Eigen::Vector2d, 4> rotatedRectangle(const Eigen::Vector2d& centre, double length, double width, double angle)
+{
+  const Eigen::Vector2d a(std::cos(angle), std::sin(angle)), b(-std::sin(angle), std::cos(angle));
+  return {centre + 0.5 * length * a + 0.5 * width * b, centre + 0.5 * length * a - 0.5 * width * b,
+          centre - 0.5 * length * a - 0.5 * width * b, centre - 0.5 * length * a + 0.5 * width * b};
+}
+
+TEST(PlaneFit, RecoversTiltedPlaneTowardCameraDespiteOutliers)
+{
+  const Eigen::Matrix3d rotation = test::PlateScene::facingCamera(0.3, 0.4);
+  const Eigen::Vector3d centre(0.1, -0.05, 1.2);
+  pcl::PointCloud<pcl::PointXYZ> cloud = rectanglePoints(rotation, centre, 0.6, 0.2, 0.005, 0.002);
+  for (int i = 0; i < 40; ++i)  // flying pixels 10-30 cm behind the plate
+    cloud.push_back(pcl::PointXYZ(0.1f + 0.001f * i, -0.05f, 1.3f + 0.005f * i));
+  const PlaneFit plane = fitPlane(cloud);
+  ASSERT_TRUE(plane.valid);
+  const Eigen::Vector3d truth_normal = rotation.col(2);  // brick z faces the camera
+  EXPECT_LT(truth_normal.z(), 0.0);
+  EXPECT_LT(degrees(std::acos(std::min(1.0, plane.normal.dot(truth_normal)))), 0.5);
+  EXPECT_LT(std::abs(plane.signedDistance(centre)), 0.001);
+  EXPECT_LT(plane.rms_m, 0.003);
+  EXPECT_LE(plane.inlier_count, cloud.size() - 40);
+}
+
+TEST(PlaneFit, CollinearPointsGiveNoPlane)
+{
+  pcl::PointCloud<pcl::PointXYZ> line;
+  for (int i = 0; i < 10; ++i) line.push_back(pcl::PointXYZ(0.01f * i, 0.0f, 1.0f));
+  EXPECT_FALSE(fitPlane(line).valid);
+}
+
+TEST(OrientedBoundingBox, MeasuresRotatedRectangleWithinMillimetres)
+{
+  const Eigen::Matrix3d rotation = test::PlateScene::facingCamera(0.7, 0.5);
+  const Eigen::Vector3d centre(-0.2, 0.1, 1.5);
+  const auto cloud = rectanglePoints(rotation, centre, 0.6, 0.2, 0.002);
+  const OrientedBoundingBox box = computeOrientedBoundingBox(cloud);
+  ASSERT_TRUE(box.valid);
+  EXPECT_NEAR(box.extents_m.x(), 0.6, 0.003);
+  EXPECT_NEAR(box.extents_m.y(), 0.2, 0.003);
+  EXPECT_LT(box.extents_m.z(), 0.001);
+  EXPECT_LT((box.center_m - centre).norm(), 0.002);
+  EXPECT_GT(std::abs(box.axes.col(0).dot(rotation.col(0))), std::cos(0.01));
+  EXPECT_NEAR(box.axes.determinant(), 1.0, 1e-9);
+}
+
+TEST(OrientedBoundingBox, DimensionCheckAgainstCatalogue)
+{
+  const BrickType& green = BrickCatalogue::mbzirc2020().at("green");
+  const DimensionTolerance tolerance;
+  EXPECT_FALSE(checkTopFaceDimensions(0.61, 0.19, 0.01, green, tolerance));
+  EXPECT_FALSE(checkTopFaceDimensions(0.40, 0.20, 0.01, green, tolerance)) << "partly occluded plate";
+  const auto too_long = checkTopFaceDimensions(0.70, 0.20, 0.01, green, tolerance);
+  ASSERT_TRUE(too_long);
+  EXPECT_NE(too_long->find("length"), std::string::npos);
+  const auto too_wide = checkTopFaceDimensions(0.60, 0.30, 0.01, green, tolerance);
+  ASSERT_TRUE(too_wide);
+  EXPECT_NE(too_wide->find("width"), std::string::npos);
+  const auto too_thick = checkTopFaceDimensions(0.60, 0.20, 0.15, green, tolerance);
+  ASSERT_TRUE(too_thick);
+  EXPECT_NE(too_thick->find("thickness"), std::string::npos);
+  EXPECT_TRUE(checkTopFaceDimensions(0.10, 0.20, 0.0, green, tolerance));
+}
+
+TEST(LeastAreaQuad, ChamferedRectangleReducesToTheRectangle)
+{
+  // A rectangle with all four corners cut off is an octagon; the least-area
+  // enclosing quadrilateral puts the corners back.
+  const std::vector<Eigen::Vector2d> octagon = {{2, 0}, {8, 0}, {10, 2}, {10, 4}, {8, 6}, {2, 6}, {0, 4}, {0, 2}};
+  const auto quad = reduceToLeastAreaQuad(octagon);
+  ASSERT_TRUE(quad);
+  const std::array<Eigen::Vector2d, 4> truth = {{{0, 0}, {10, 0}, {10, 6}, {0, 6}}};
+  EXPECT_LT(worstCornerErrorPx(*quad, truth), 1e-9);
+  EXPECT_FALSE(reduceToLeastAreaQuad({{0, 0}, {1, 0}, {0, 1}}));
+}
+
+TEST(LeastAreaQuad, SubPixelCornersOfRotatedRectangle)
+{
+  for (const double angle : {0.0, 0.2, 0.61, 1.1})
+  {
+    const auto truth = rotatedRectangle({200.3, 150.7}, 220.0, 80.0, angle);
+    const cv::Mat mask = rasterise(truth, {400, 300});
+    const auto quad = fitLeastAreaQuad(largestOutline(mask));
+    ASSERT_TRUE(quad);
+    EXPECT_LT(worstCornerErrorPx(*quad, truth), 0.6) << "angle " << angle;
+    EXPECT_GT(signedAreaPx(*quad), 0.0) << "clockwise on screen";
+  }
+}
+
+TEST(LeastAreaQuad, NotchedEdgeStillGivesTheFullRectangle)
+{
+  // A chunk missing from one long edge (e.g. a gripper over the plate): the
+  // convex hull then loses nothing, but the outline along that edge is broken.
+  const double angle = 0.35;
+  const Eigen::Vector2d centre(210.0, 160.0);
+  const auto truth = rotatedRectangle(centre, 240.0, 90.0, angle);
+  const Eigen::Vector2d along(std::cos(angle), std::sin(angle)), across(-std::sin(angle), std::cos(angle));
+  const std::vector<Eigen::Vector2d> notch = {centre - 30 * along + 20 * across, centre + 30 * along + 20 * across,
+                                              centre + 30 * along + 60 * across, centre - 30 * along + 60 * across};
+  const cv::Mat mask = rasterise(truth, {420, 320}, notch);
+  const std::vector<cv::Point> outline = largestOutline(mask);
+  const auto quad = fitLeastAreaQuad(outline);
+  ASSERT_TRUE(quad);
+  EXPECT_LT(worstCornerErrorPx(*quad, truth), 1.0);
+
+  // A notch at a corner: the convex hull cuts the corner, the least-area quad
+  // restores it from the two edges it still has.
+  const std::vector<Eigen::Vector2d> corner_notch = {truth[0] - 40 * along - 10 * across, truth[0] + 10 * along - 10 * across,
+                                                     truth[0] + 10 * along + 25 * across, truth[0] - 40 * along + 25 * across};
+  const cv::Mat cut = rasterise(truth, {420, 320}, corner_notch);
+  const auto cut_quad = fitLeastAreaQuad(largestOutline(cut));
+  ASSERT_TRUE(cut_quad);
+  EXPECT_LT(worstCornerErrorPx(*cut_quad, truth), 1.0);
+  std::vector<cv::Point> hull;
+  cv::convexHull(largestOutline(cut), hull);
+  double hull_to_corner = 1e9;
+  for (const cv::Point& p : hull) hull_to_corner = std::min(hull_to_corner, (Eigen::Vector2d(p.x, p.y) - truth[0]).norm());
+  EXPECT_GT(hull_to_corner, 10.0) << "the hull alone misses the occluded corner";
+}
+
+TEST(LeastAreaQuad, DiagonalIntersectionIsPerspectiveCentre)
+{
+  const QuadCorners square = {{{0, 0}, {4, 0}, {4, 2}, {0, 2}}};
+  EXPECT_LT((diagonalIntersection(square) - Eigen::Vector2d(2, 1)).norm(), 1e-12);
+}
+
+/// Candidate of the scene's plate through HSV segmentation and the ROI filter.
+RoiResult filterScene(const test::PlateScene& scene, const RgbdFrame& frame, const RoiFilterParams& params = RoiFilterParams())
+{
+  const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
+  const std::vector<Segment> segments = HsvSegmenter().segment(frame, catalogue);
+  if (segments.size() != 1) return "expected one segment, got " + std::to_string(segments.size());
+  CloudProcessorParams cloud;
+  cloud.outlier_removal_enabled = false;
+  return RoiFilter(catalogue, params, cloud).filter(frame, segments.front());
+}
+
+TEST(RoiFilter, CornersCentreAndAxisPointsOfATiltedPlate)
+{
+  test::PlateScene scene;
+  scene.camera = test::PlateScene::vgaCamera();
+  scene.centre_m = Eigen::Vector3d(0.05, -0.03, 1.1);
+  scene.rotation = test::PlateScene::facingCamera(0.5, 0.35);
+  scene.depth_noise_m = 0.002;
+  const RgbdFrame frame = scene.frame();
+  const RoiResult result = filterScene(scene, frame);
+  ASSERT_TRUE(std::holds_alternative<BrickCandidate>(result)) << std::get<std::string>(result);
+  const BrickCandidate& c = std::get<BrickCandidate>(result);
+
+  EXPECT_EQ(c.type_name, "green");
+  EXPECT_TRUE(c.complete);
+  EXPECT_NEAR(c.length_m, 0.6, 0.004);
+  EXPECT_NEAR(c.width_m, 0.2, 0.004);
+  EXPECT_NEAR(c.obb.extents_m.x(), 0.6, 0.015);
+  EXPECT_NEAR(c.obb.extents_m.y(), 0.2, 0.015);
+  EXPECT_LT((c.centroid_m - scene.centre_m).norm(), 0.003);
+  EXPECT_LT(degrees(std::acos(std::min(1.0, c.normal.dot(scene.rotation.col(2))))), 0.5);
+
+  // Corners: each truth corner within 1 px and 4 mm of a candidate corner.
+  const auto truth_m = scene.cornersM();
+  for (const auto& t : truth_m)
+  {
+    double best_px = 1e9, best_m = 1e9;
+    for (int k = 0; k < 4; ++k)
+    {
+      best_px = std::min(best_px, (c.corners_px[k] - frame.camera.project(t)).norm());
+      best_m = std::min(best_m, (c.corners_m[k] - t).norm());
+    }
+    EXPECT_LT(best_px, 1.0);
+    EXPECT_LT(best_m, 0.004);
+  }
+  // Long edge first.
+  EXPECT_NEAR((c.corners_m[1] - c.corners_m[0]).norm(), 0.6, 0.005);
+  EXPECT_NEAR((c.corners_m[2] - c.corners_m[1]).norm(), 0.2, 0.005);
+  EXPECT_LE(c.corners_px[0].y(), c.corners_px[2].y());
+
+  // T1/T2 at +-L/4 on the long axis, either way round.
+  const Eigen::Vector3d quarter = 0.15 * scene.rotation.col(0);
+  const Eigen::Vector3d a = scene.centre_m + quarter, b = scene.centre_m - quarter;
+  const double direct = (c.t1_m - a).norm() + (c.t2_m - b).norm();
+  const double swapped = (c.t1_m - b).norm() + (c.t2_m - a).norm();
+  EXPECT_LT(std::min(direct, swapped), 0.008);
+  EXPECT_LT((frame.camera.project(c.t1_m) - c.t1_px).norm(), 1e-6);
+  EXPECT_LT((frame.camera.project(c.centroid_m) - c.centroid_px).norm(), 1e-6);
+}
+
+TEST(RoiFilter, RejectsAnOversizedPlateWithAReason)
+{
+  test::PlateScene scene;
+  scene.camera = test::PlateScene::vgaCamera();
+  scene.centre_m = Eigen::Vector3d(0.0, 0.0, 1.5);
+  scene.rotation = test::PlateScene::facingCamera(0.2);
+  scene.length_m = 0.9;  // green colour, but 0.9 m long
+  const RgbdFrame frame = scene.frame();
+  const RoiResult result = filterScene(scene, frame);
+  ASSERT_TRUE(std::holds_alternative<std::string>(result));
+  EXPECT_NE(std::get<std::string>(result).find("length"), std::string::npos) << std::get<std::string>(result);
+}
+
+TEST(RoiFilter, RejectsSegmentWithTooFewDepthPixels)
+{
+  test::PlateScene scene;
+  scene.camera = test::PlateScene::vgaCamera();
+  const RgbdFrame frame = scene.frame();
+  Segment segment = HsvSegmenter().segment(frame, BrickCatalogue::mbzirc2020()).at(0);
+  segment.pixel_indices.resize(10);
+  const RoiResult result = RoiFilter(BrickCatalogue::mbzirc2020(), RoiFilterParams(), CloudProcessorParams()).filter(frame, segment);
+  ASSERT_TRUE(std::holds_alternative<std::string>(result));
+  EXPECT_NE(std::get<std::string>(result).find("depth pixels"), std::string::npos);
+}
+
+TEST(RoiFilter, UpDirectionRejectsSideFaces)
+{
+  test::PlateScene scene;
+  scene.camera = test::PlateScene::vgaCamera();
+  scene.rotation = test::PlateScene::facingCamera(0.1, 0.6);
+  const RgbdFrame frame = scene.frame();
+  RoiFilterParams params;
+  params.up_direction = Eigen::Vector3d(0.0, -1.0, 0.0);  // camera looking horizontally, y down
+  const RoiResult result = filterScene(scene, frame, params);
+  ASSERT_TRUE(std::holds_alternative<std::string>(result));
+  EXPECT_NE(std::get<std::string>(result).find("tilt"), std::string::npos);
+  params.up_direction = scene.rotation.col(2);  // the plate's own normal: a top face
+  EXPECT_TRUE(std::holds_alternative<BrickCandidate>(filterScene(scene, frame, params)));
+}
+}  // namespace
+}  // namespace brick_pose
