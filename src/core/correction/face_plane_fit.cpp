@@ -1,5 +1,6 @@
 #include "brick_pose/correction/face_plane_fit.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 

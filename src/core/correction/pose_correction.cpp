@@ -1,5 +1,6 @@
 #include "brick_pose/correction/pose_correction.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
