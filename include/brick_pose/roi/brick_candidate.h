@@ -20,7 +20,8 @@ struct BrickCandidate
 {
   std::string type_name;
 
-  /// Segment points after cloud processing (camera frame, metres).
+  /// Segment points after cloud processing that lie on the fitted plane
+  /// (camera frame, metres).
   pcl::PointCloud<pcl::PointXYZ>::Ptr points;
   /// MLS-smoothed points with normals; null when MLS is disabled.
   pcl::PointCloud<pcl::PointNormal>::Ptr smoothed_points;

@@ -29,6 +29,9 @@ struct RegionGrowingParams
   bool regrow_footprint = true;
   double footprint_plane_distance_m = 0.006;
   int min_area_px = 400;                 ///< Footprints smaller than this are dropped.
+  /// A footprint sharing more than this fraction of its pixels with a larger
+  /// one is the same face (split into two regions) and is dropped.
+  double max_footprint_overlap = 0.5;
 
   void validate() const;  ///< Throws ConfigError naming the field.
 };

@@ -59,7 +59,7 @@ pcl::PointCloud<pcl::PointXYZRGB>::Ptr CloudProcessor::cropOrganized(
     const pcl::PointCloud<pcl::PointXYZRGB>::ConstPtr& cloud) const
 {
   pcl::PointCloud<pcl::PointXYZRGB>::Ptr cropped(new pcl::PointCloud<pcl::PointXYZRGB>);
-  pcl::PassThrough<pcl::PointXYZRGB> passthrough;
+  pcl::PassThrough<pcl::PointXYZRGB> passthrough(true);  // keeping organised needs the removed indices
   passthrough.setInputCloud(cloud);
   passthrough.setFilterFieldName("z");
   passthrough.setFilterLimits(static_cast<float>(params_.min_depth_m), static_cast<float>(params_.max_depth_m));

@@ -1,5 +1,6 @@
 #include "brick_pose/roi/roi_filter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -26,6 +27,19 @@ std::array<T, 4> rotated(const std::array<T, 4>& values, int start)
   std::array<T, 4> out;
   for (int k = 0; k < 4; ++k) out[k] = values[(start + k) % 4];
   return out;
+}
+
+pcl::PointCloud<pcl::PointXYZ>::Ptr planeInliers(const pcl::PointCloud<pcl::PointXYZ>& cloud, const PlaneFit& plane,
+                                                 const PlaneFitParams& params)
+{
+  const double max_distance_m = std::max(params.min_inlier_distance_m, params.mad_factor * plane.rms_m);
+  pcl::PointCloud<pcl::PointXYZ>::Ptr inliers(new pcl::PointCloud<pcl::PointXYZ>);
+  inliers->reserve(cloud.size());
+  for (const auto& point : cloud)
+    if (std::abs(plane.signedDistance(Eigen::Vector3d(point.x, point.y, point.z))) <= max_distance_m)
+      inliers->push_back(point);
+  inliers->header = cloud.header;
+  return inliers;
 }
 
 /// Index (0 or 1) of the corner starting the first long edge of a
@@ -81,6 +95,10 @@ RoiResult RoiFilter::filter(const RgbdFrame& frame, const Segment& segment, Clou
     if (tilt_deg > params_.max_tilt_deg) return describe("face tilt", tilt_deg, "deg exceeds", params_.max_tilt_deg);
   }
 
+  // The box of min/max extents is only as good as its worst point: measure it
+  // on the plane's inliers (stray pixels of the background that happen to lie
+  // near the extended plane, or flying pixels, are dropped here).
+  candidate.points = planeInliers(*candidate.points, candidate.plane, params_.plane);
   candidate.obb = computeOrientedBoundingBox(*candidate.points);
   if (auto reason = fitOutline(frame, segment, candidate)) return *reason;
   if (auto reason = assignType(segment, candidate)) return *reason;

@@ -105,6 +105,15 @@ Segment footprint(const RgbdFrame& frame, const pcl::PointCloud<pcl::PointXYZ>& 
   }
   return segment;
 }
+/// Number of image pixels two footprints share.
+int overlapPx(const Segment& a, const Segment& b)
+{
+  const cv::Rect common = a.bounding_box_px & b.bounding_box_px;
+  if (common.empty()) return 0;
+  const cv::Mat a_part = a.mask(common - a.bounding_box_px.tl());
+  const cv::Mat b_part = b.mask(common - b.bounding_box_px.tl());
+  return cv::countNonZero(a_part & b_part);
+}
 }  // namespace
 
 void RegionGrowingParams::validate() const
@@ -118,6 +127,7 @@ void RegionGrowingParams::validate() const
   require(min_region_points >= 3, "min_region_points", "must be >= 3");
   require(footprint_plane_distance_m > 0.0, "footprint_plane_distance_m", "must be > 0");
   require(min_area_px >= 1, "min_area_px", "must be >= 1");
+  require(max_footprint_overlap > 0.0 && max_footprint_overlap <= 1.0, "max_footprint_overlap", "must be in (0, 1]");
 }
 
 RegionGrowingSegmenter::RegionGrowingSegmenter(const RegionGrowingParams& params) : params_(params) { params_.validate(); }
@@ -159,13 +169,24 @@ std::vector<Segment> RegionGrowingSegmenter::segment(const RgbdFrame& frame) con
   std::vector<pcl::PointIndices> regions;
   region_growing.extract(regions);
 
-  std::vector<Segment> segments;
+  std::vector<Segment> footprints;
   for (const pcl::PointIndices& region : regions)
   {
     Segment segment = footprint(frame, *strided, source_pixels, region, params_);
-    if (segment.area_px >= params_.min_area_px) segments.push_back(std::move(segment));
+    if (segment.area_px >= params_.min_area_px) footprints.push_back(std::move(segment));
   }
-  std::sort(segments.begin(), segments.end(), [](const Segment& a, const Segment& b) { return a.area_px > b.area_px; });
+  std::sort(footprints.begin(), footprints.end(), [](const Segment& a, const Segment& b) { return a.area_px > b.area_px; });
+
+  // A face split into several regions regrows into the same footprint
+  // several times: keep the largest of overlapping footprints.
+  std::vector<Segment> segments;
+  for (Segment& candidate : footprints)
+  {
+    const bool duplicate = std::any_of(segments.begin(), segments.end(), [&](const Segment& kept) {
+      return overlapPx(candidate, kept) > params_.max_footprint_overlap * candidate.area_px;
+    });
+    if (!duplicate) segments.push_back(std::move(candidate));
+  }
   return segments;
 }
 }  // namespace brick_pose

@@ -1,0 +1,119 @@
+// The whole front end on synthetic 1280x720 frames.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "brick_pose/common/errors.h"
+#include "brick_pose/roi/front_end.h"
+#include "synthetic_plate_scene.h"
+
+namespace brick_pose
+{
+namespace
+{
+test::PlateScene d415Scene()
+{
+  test::PlateScene scene;
+  scene.camera = PinholeCamera::d415Color1280x720();
+  scene.centre_m = Eigen::Vector3d(0.1, 0.05, 1.3);
+  scene.rotation = test::PlateScene::facingCamera(0.6, 0.3);
+  scene.depth_noise_m = 0.002;
+  return scene;
+}
+
+double worstCornerErrorPx(const BrickCandidate& candidate, const test::PlateScene& scene)
+{
+  double worst = 0.0;
+  for (const auto& corner_m : scene.cornersM())
+  {
+    const Eigen::Vector2d truth = scene.camera.project(corner_m);
+    double nearest = 1e9;
+    for (const auto& c : candidate.corners_px) nearest = std::min(nearest, (c - truth).norm());
+    worst = std::max(worst, nearest);
+  }
+  return worst;
+}
+
+TEST(FrontEnd, OneGreenPlateGivesOneGreenCandidate)
+{
+  const test::PlateScene scene = d415Scene();
+  const FrontEnd front_end(BrickCatalogue::mbzirc2020());
+  const FrontEndResult result = front_end.process(scene.frame());
+  ASSERT_EQ(result.candidates.size(), 1u);
+  EXPECT_TRUE(result.rejections.empty());
+  const BrickCandidate& c = result.candidates.front();
+  EXPECT_EQ(c.type_name, "green");
+  EXPECT_NEAR(c.length_m, 0.6, 0.005);
+  EXPECT_NEAR(c.width_m, 0.2, 0.005);
+  EXPECT_LT(worstCornerErrorPx(c, scene), 1.0);
+  EXPECT_LT((c.centroid_m - scene.centre_m).norm(), 0.004);
+  EXPECT_GT(result.timings.total_ms, 0.0);
+  EXPECT_GE(result.timings.total_ms, result.timings.segmentation_ms);
+}
+
+TEST(FrontEnd, RedPlateIsRed)
+{
+  test::PlateScene scene = d415Scene();
+  scene.length_m = 0.3;
+  scene.plate_rgb = cv::Vec3b(200, 25, 25);
+  const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020()).process(scene.frame());
+  ASSERT_EQ(result.candidates.size(), 1u);
+  EXPECT_EQ(result.candidates[0].type_name, "red");
+  EXPECT_NEAR(result.candidates[0].length_m, 0.3, 0.005);
+}
+
+TEST(FrontEnd, EmptySceneGivesNothing)
+{
+  test::PlateScene scene = d415Scene();
+  scene.draw_plate = false;
+  const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020()).process(scene.frame());
+  EXPECT_TRUE(result.candidates.empty());
+  EXPECT_TRUE(result.rejections.empty());
+}
+
+TEST(FrontEnd, OversizedPlateIsRejectedWithAReason)
+{
+  test::PlateScene scene = d415Scene();
+  scene.length_m = 0.9;
+  const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020()).process(scene.frame());
+  EXPECT_TRUE(result.candidates.empty());
+  ASSERT_EQ(result.rejections.size(), 1u);
+  EXPECT_EQ(result.rejections[0].type_name, "green");
+  EXPECT_NE(result.rejections[0].reason.find("length"), std::string::npos) << result.rejections[0].reason;
+}
+
+TEST(FrontEnd, PartlyOccludedPlateIsStillACandidate)
+{
+  test::PlateScene scene = d415Scene();
+  scene.has_notch = true;  // the plate's -x third is hidden
+  scene.notch_min_m = Eigen::Vector2d(-0.31, -0.11);
+  scene.notch_max_m = Eigen::Vector2d(-0.1, 0.11);
+  const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020()).process(scene.frame());
+  ASSERT_EQ(result.candidates.size(), 1u);
+  EXPECT_EQ(result.candidates[0].type_name, "green");
+  EXPECT_FALSE(result.candidates[0].complete);
+  EXPECT_NEAR(result.candidates[0].length_m, 0.4, 0.01);
+}
+
+TEST(FrontEnd, RegionGrowingModeClassifiesByDimensions)
+{
+  test::PlateScene scene = d415Scene();
+  scene.plate_rgb = scene.background_rgb;  // colour-free
+  FrontEndParams params;
+  params.mode = parseSegmentationMode("region_growing");
+  const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
+  ASSERT_EQ(result.candidates.size(), 1u);
+  EXPECT_EQ(result.candidates[0].type_name, "green");
+  EXPECT_NEAR(result.candidates[0].length_m, 0.6, 0.015);
+  EXPECT_FALSE(result.rejections.empty()) << "the background plane is a segment too, and too large";
+}
+
+TEST(FrontEnd, ModeNamesAndConfigErrors)
+{
+  EXPECT_EQ(parseSegmentationMode("hsv"), SegmentationMode::kHsv);
+  EXPECT_EQ(toString(SegmentationMode::kRegionGrowing), "region_growing");
+  EXPECT_THROW(parseSegmentationMode("colour"), ConfigError);
+  EXPECT_THROW(FrontEnd{BrickCatalogue()}, ConfigError);
+}
+}  // namespace
+}  // namespace brick_pose
