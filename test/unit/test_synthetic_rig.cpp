@@ -5,6 +5,9 @@
 #include <vector>
 
 #include "brick_pose/common/errors.h"
+#include <map>
+
+#include "brick_pose/sim/rig_config.h"
 #include "brick_pose/sim/scene_generator.h"
 #include "brick_pose/sim/synthetic_rig.h"
 
@@ -254,6 +257,67 @@ TEST(SyntheticRig, BadParametersNameTheField)
   }
   EXPECT_THROW(lightingFromString("dusk"), ConfigError);
   EXPECT_THROW(sceneKindFromString("heap"), ConfigError);
+}
+}  // namespace sim
+}  // namespace brick_pose
+
+namespace brick_pose
+{
+namespace sim
+{
+namespace
+{
+ParamLookup lookupFrom(const std::map<std::string, std::string>& values)
+{
+  return [values](const std::string& name) -> std::optional<std::string> {
+    const auto found = values.find(name);
+    if (found == values.end()) return std::nullopt;
+    return found->second;
+  };
+}
+
+std::string configErrorOf(const std::map<std::string, std::string>& values)
+{
+  try
+  {
+    rigConfigFrom(lookupFrom(values));
+  }
+  catch (const ConfigError& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(RigConfig, ReadsEveryKindOfParameter)
+{
+  const RigConfig config = rigConfigFrom(lookupFrom({{"scene", "organised_pile"},
+                                                     {"types", "red, blue"},
+                                                     {"seed", "42"},
+                                                     {"lighting", "low_light"},
+                                                     {"fx", "610.5"},
+                                                     {"stereo_shadow", "false"},
+                                                     {"catalogue_path", BRICK_POSE_SOURCE_DIR "/config/bricks.yaml"}}));
+  EXPECT_EQ(config.scene.kind, SceneKind::kOrganisedPile);
+  EXPECT_EQ(config.scene.types, (std::vector<std::string>{"red", "blue"}));
+  EXPECT_EQ(config.seed, 42u);
+  EXPECT_EQ(config.sensor.lighting, Lighting::kLowLight);
+  EXPECT_DOUBLE_EQ(config.camera.fx_px, 610.5);
+  EXPECT_FALSE(config.sensor.stereo_shadow);
+}
+
+TEST(RigConfig, ErrorsNameTheParameter)
+{
+  EXPECT_NE(configErrorOf({{"types", "purple"}}).find("'types'"), std::string::npos);
+  EXPECT_NE(configErrorOf({{"types", "purple"}}).find("purple"), std::string::npos);
+  EXPECT_NE(configErrorOf({{"fx", "0"}}).find("fx"), std::string::npos);
+  EXPECT_NE(configErrorOf({{"fy", "abc"}}).find("'fy'"), std::string::npos);
+  EXPECT_NE(configErrorOf({{"seed", "-3"}}).find("seed"), std::string::npos);
+  EXPECT_NE(configErrorOf({{"lighting", "dusk"}}).find("dusk"), std::string::npos);
+  EXPECT_NE(configErrorOf({{"stereo_shadow", "maybe"}}).find("stereo_shadow"), std::string::npos);
+  EXPECT_NE(configErrorOf({{"catalogue_path", "/no/such.yaml"}}).find("/no/such.yaml"), std::string::npos);
+  EXPECT_EQ(configErrorOf({}), "") << "defaults are valid";
 }
 }  // namespace sim
 }  // namespace brick_pose

@@ -199,7 +199,8 @@ void SceneParams::validate(const BrickCatalogue& catalogue) const
   };
   check(!catalogue.empty(), "the brick catalogue is empty");
   for (const std::string& type : types)
-    catalogue.at(type);  // throws naming the unknown type
+    check(catalogue.find(type) != nullptr,
+          "parameter 'types': unknown brick type '" + type + "' (known: " + catalogue.namesJoined() + ")");
   check(min_distance_m > 0.0 && max_distance_m >= min_distance_m, "need 0 < min_distance_m <= max_distance_m");
   check(min_elevation_deg > 0.0 && max_elevation_deg <= 89.9 && min_elevation_deg <= max_elevation_deg,
         "need 0 < min_elevation_deg <= max_elevation_deg <= 89.9");

@@ -1,0 +1,48 @@
+#pragma once
+// A rendered synthetic frame as the messages realsense2_camera publishes with
+// align_depth:=true, plus its ground truth. Shared by the SyntheticCamera
+// nodelet and the brick_pose_simulate bag writer so both publish the same thing.
+
+#include <string>
+#include <vector>
+
+#include <geometry_msgs/TransformStamped.h>
+#include <ros/time.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+
+#include "brick_pose/BrickTruthArray.h"
+#include "brick_pose/sim/synthetic_rig.h"
+
+namespace brick_pose
+{
+/// Topic names relative to the camera namespace, as realsense2_camera uses them.
+struct CameraTopics
+{
+  static constexpr const char* kColorImage = "color/image_raw";
+  static constexpr const char* kColorInfo = "color/camera_info";
+  static constexpr const char* kDepthImage = "aligned_depth_to_color/image_raw";
+  static constexpr const char* kDepthInfo = "aligned_depth_to_color/camera_info";
+};
+
+struct SyntheticFrameMessages
+{
+  sensor_msgs::ImagePtr color;  // rgb8
+  sensor_msgs::CameraInfoPtr color_info;
+  sensor_msgs::ImagePtr depth;  // 16UC1, millimetres, aligned to colour
+  sensor_msgs::CameraInfoPtr depth_info;
+  BrickTruthArrayPtr truth;
+  std::vector<geometry_msgs::TransformStamped> truth_frames;  // truth_<type>_<instance>
+};
+
+SyntheticFrameMessages toMessages(const sim::SyntheticFrame& frame, const ros::Time& stamp,
+                                  const std::string& optical_frame_id);
+
+/// tf child frame name of one ground-truth brick.
+std::string truthFrameName(const sim::BrickTruth& truth);
+
+/// camera_link -> colour optical frame, as realsense2_camera publishes it
+/// (optical frame: z forward, x right, y down; camera_link: x forward, z up).
+geometry_msgs::TransformStamped cameraLinkToOptical(const ros::Time& stamp, const std::string& camera_link,
+                                                    const std::string& optical_frame_id);
+}  // namespace brick_pose

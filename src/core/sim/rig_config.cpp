@@ -1,0 +1,175 @@
+#include "brick_pose/sim/rig_config.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "brick_pose/common/errors.h"
+
+namespace brick_pose
+{
+namespace sim
+{
+double parseDouble(const std::string& name, const std::string& text)
+{
+  std::size_t used = 0;
+  double value = 0.0;
+  try
+  {
+    value = std::stod(text, &used);
+  }
+  catch (const std::exception&)
+  {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(value))
+    throw ConfigError("parameter '" + name + "': '" + text + "' is not a finite number");
+  return value;
+}
+
+long long parseInteger(const std::string& name, const std::string& text)
+{
+  std::size_t used = 0;
+  long long value = 0;
+  try
+  {
+    value = std::stoll(text, &used);
+  }
+  catch (const std::exception&)
+  {
+    used = 0;
+  }
+  if (used == 0 || used != text.size())
+    throw ConfigError("parameter '" + name + "': '" + text + "' is not an integer");
+  return value;
+}
+
+bool parseBool(const std::string& name, const std::string& text)
+{
+  if (text == "true" || text == "1" || text == "True") return true;
+  if (text == "false" || text == "0" || text == "False") return false;
+  throw ConfigError("parameter '" + name + "': '" + text + "' is not true or false");
+}
+
+std::vector<std::string> splitList(const std::string& text)
+{
+  std::vector<std::string> items;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ','))
+  {
+    const auto first = item.find_first_not_of(" []'\"");
+    const auto last = item.find_last_not_of(" []'\"");
+    if (first != std::string::npos) items.push_back(item.substr(first, last - first + 1));
+  }
+  return items;
+}
+
+const std::vector<std::pair<std::string, std::string>>& rigParameterHelp()
+{
+  static const std::vector<std::pair<std::string, std::string>> help = {
+      {"catalogue_path", "brick catalogue YAML (default: built-in MBZIRC 2020 bricks)"},
+      {"scene", "single | organised_pile | unorganised_pile (default single)"},
+      {"types", "comma-separated brick types to draw from (default: all)"},
+      {"seed", "scene seed; the same seed gives the same scene and noise (default 1)"},
+      {"min_distance_m", "nearest camera-to-pile distance (default 0.6)"},
+      {"max_distance_m", "farthest camera-to-pile distance (default 1.5)"},
+      {"min_elevation_deg", "lowest view angle below the horizon (default 55)"},
+      {"max_elevation_deg", "highest view angle, 90 = straight down (default 88)"},
+      {"max_tilt_deg", "largest brick tilt (default 8)"},
+      {"max_pile_bricks", "bricks in an unorganised pile: 2..this (default 6)"},
+      {"lighting", "normal | sunlight | low_light (default normal)"},
+      {"width", "image width in pixels (default 1280)"},
+      {"height", "image height in pixels (default 720)"},
+      {"fx", "focal length x in pixels (default 920)"},
+      {"fy", "focal length y in pixels (default 920)"},
+      {"cx", "principal point x (default 640)"},
+      {"cy", "principal point y (default 360)"},
+      {"baseline_m", "stereo baseline (default 0.055)"},
+      {"subpixel_px", "stereo subpixel accuracy (default 0.08)"},
+      {"dropout_probability", "random depth holes per pixel (default 0.002)"},
+      {"flying_pixel_probability", "chance of a flying pixel on a depth edge (default 0.5)"},
+      {"stereo_shadow", "holes where the second imager is occluded (default true)"},
+  };
+  return help;
+}
+
+namespace
+{
+class Reader
+{
+public:
+  explicit Reader(const ParamLookup& lookup) : lookup_(lookup) {}
+
+  void number(const std::string& name, double& target) const
+  {
+    if (const auto text = lookup_(name)) target = parseDouble(name, *text);
+  }
+  void integer(const std::string& name, int& target) const
+  {
+    if (const auto text = lookup_(name)) target = static_cast<int>(parseInteger(name, *text));
+  }
+  void flag(const std::string& name, bool& target) const
+  {
+    if (const auto text = lookup_(name)) target = parseBool(name, *text);
+  }
+  std::optional<std::string> text(const std::string& name) const { return lookup_(name); }
+
+private:
+  const ParamLookup& lookup_;
+};
+
+void readCamera(const Reader& read, PinholeCamera& camera)
+{
+  read.integer("width", camera.width_px);
+  read.integer("height", camera.height_px);
+  read.number("fx", camera.fx_px);
+  read.number("fy", camera.fy_px);
+  read.number("cx", camera.cx_px);
+  read.number("cy", camera.cy_px);
+  camera.validate();
+}
+
+void readSensor(const Reader& read, SensorModel& sensor)
+{
+  if (const auto lighting = read.text("lighting")) sensor.lighting = lightingFromString(*lighting);
+  read.number("baseline_m", sensor.baseline_m);
+  read.number("subpixel_px", sensor.subpixel_px);
+  read.number("dropout_probability", sensor.dropout_probability);
+  read.number("flying_pixel_probability", sensor.flying_pixel_probability);
+  read.flag("stereo_shadow", sensor.stereo_shadow);
+  sensor.validate();
+}
+
+void readScene(const Reader& read, SceneParams& scene)
+{
+  if (const auto kind = read.text("scene")) scene.kind = sceneKindFromString(*kind);
+  if (const auto types = read.text("types")) scene.types = splitList(*types);
+  read.number("min_distance_m", scene.min_distance_m);
+  read.number("max_distance_m", scene.max_distance_m);
+  read.number("min_elevation_deg", scene.min_elevation_deg);
+  read.number("max_elevation_deg", scene.max_elevation_deg);
+  read.number("max_tilt_deg", scene.max_tilt_deg);
+  read.integer("max_pile_bricks", scene.max_pile_bricks);
+}
+}  // namespace
+
+RigConfig rigConfigFrom(const ParamLookup& lookup)
+{
+  const Reader read(lookup);
+  RigConfig config;
+  if (const auto path = read.text("catalogue_path"))
+    if (!path->empty()) config.catalogue = BrickCatalogue::fromYamlFile(*path);
+  readCamera(read, config.camera);
+  readSensor(read, config.sensor);
+  readScene(read, config.scene);
+  config.scene.validate(config.catalogue);
+  if (const auto seed = read.text("seed"))
+  {
+    const long long value = parseInteger("seed", *seed);
+    if (value < 0) throw ConfigError("parameter 'seed': must be >= 0");
+    config.seed = static_cast<std::uint64_t>(value);
+  }
+  return config;
+}
+}  // namespace sim
+}  // namespace brick_pose

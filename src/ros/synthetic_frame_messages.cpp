@@ -1,0 +1,61 @@
+#include "brick_pose/ros/synthetic_frame_messages.h"
+
+#include <boost/make_shared.hpp>
+
+#include "brick_pose/ros/conversions.h"
+
+namespace brick_pose
+{
+std::string truthFrameName(const sim::BrickTruth& truth)
+{
+  return "truth_" + truth.type + "_" + std::to_string(truth.instance_id);
+}
+
+SyntheticFrameMessages toMessages(const sim::SyntheticFrame& frame, const ros::Time& stamp,
+                                  const std::string& optical_frame_id)
+{
+  std_msgs::Header header;
+  header.stamp = stamp;
+  header.frame_id = optical_frame_id;
+  SyntheticFrameMessages messages;
+  messages.color = ros_conversions::toImageMessage(frame.rgb, "rgb8", header);
+  messages.depth = ros_conversions::toImageMessage(frame.depth_mm, "16UC1", header);
+  messages.color_info = boost::make_shared<sensor_msgs::CameraInfo>(ros_conversions::toCameraInfo(frame.camera, header));
+  messages.depth_info = boost::make_shared<sensor_msgs::CameraInfo>(*messages.color_info);
+  messages.truth = boost::make_shared<BrickTruthArray>();
+  messages.truth->header = header;
+  for (const sim::BrickTruth& truth : frame.truth)
+  {
+    BrickTruth brick;
+    brick.instance_id = truth.instance_id;
+    brick.type = truth.type;
+    brick.pose = ros_conversions::toPose(truth.camera_T_brick);
+    brick.dimensions.x = truth.dimensions_m.x();
+    brick.dimensions.y = truth.dimensions_m.y();
+    brick.dimensions.z = truth.dimensions_m.z();
+    brick.visible_fraction = truth.visible_fraction;
+    messages.truth->bricks.push_back(brick);
+
+    geometry_msgs::TransformStamped transform;
+    transform.header = header;
+    transform.child_frame_id = truthFrameName(truth);
+    transform.transform = ros_conversions::toTransform(truth.camera_T_brick);
+    messages.truth_frames.push_back(transform);
+  }
+  return messages;
+}
+
+geometry_msgs::TransformStamped cameraLinkToOptical(const ros::Time& stamp, const std::string& camera_link,
+                                                    const std::string& optical_frame_id)
+{
+  Eigen::Isometry3d link_T_optical = Eigen::Isometry3d::Identity();
+  // Columns: optical x (right) = -link y, optical y (down) = -link z, optical z (forward) = link x.
+  link_T_optical.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  geometry_msgs::TransformStamped transform;
+  transform.header.stamp = stamp;
+  transform.header.frame_id = camera_link;
+  transform.child_frame_id = optical_frame_id;
+  transform.transform = ros_conversions::toTransform(link_T_optical);
+  return transform;
+}
+}  // namespace brick_pose
