@@ -5,8 +5,18 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 # Debian's catkin needs the system python3 (a pyenv python3 lacks catkin_pkg).
 export PATH=/usr/bin:/bin:$PATH
-mkdir -p "$root/ws/src"
-ln -sfn "$root" "$root/ws/src/brick_pose"
+# The package in the workspace is a folder of links to the repository's
+# top-level entries, not one link to the repository itself: roslaunch walks
+# package folders following links, and would loop through ws/ forever.
+package="$root/ws/src/brick_pose"
+[[ -L "$package" ]] && rm "$package"
+mkdir -p "$package"
+find "$package" -maxdepth 1 -type l -delete
+for entry in "$root"/* "$root"/.ci; do
+  name=$(basename "$entry")
+  case "$name" in ws | build* | .git) continue ;; esac
+  ln -sfn "$entry" "$package/$name"
+done
 cd "$root/ws"
 jobs=${JOBS:-$(nproc)}
 log="$root/ws/build.log"
