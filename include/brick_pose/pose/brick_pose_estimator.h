@@ -1,0 +1,87 @@
+#pragma once
+// Stages 5 and 6 for one brick candidate: Super4PCS registration of the
+// artificial model (the top face, origin at its centre) onto the segment,
+// then refinement of that pose by the constant-time correction (default), by
+// ICP (the paper's baseline) or not at all.
+
+#include <map>
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "brick_pose/catalogue/brick_catalogue.h"
+#include "brick_pose/correction/icp_refinement.h"
+#include "brick_pose/correction/pose_correction.h"
+#include "brick_pose/correction/refinement_method.h"
+#include "brick_pose/registration/point_set.h"
+#include "brick_pose/registration/registration_result.h"
+#include "brick_pose/registration/super4pcs.h"
+#include "brick_pose/roi/brick_candidate.h"
+
+namespace brick_pose
+{
+struct BrickPoseEstimatorParams
+{
+  registration::Super4PCSParams super4pcs;
+  /// Grid step of the artificial model cloud of each brick type.
+  double model_spacing_m = 0.01;
+  RefinementMethod refinement = kDefaultRefinementMethod;
+  PoseCorrectionParameters correction;
+  IcpParameters icp;
+
+  /// Throws ConfigError naming the first unusable field.
+  void validate() const;
+};
+
+/// Super4PCS's view of one candidate.
+struct BrickRegistration
+{
+  registration::RegistrationResult result;
+  /// Canonical T_cam_brick (z toward the camera, deterministic x sign).
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  double elapsed_ms = 0.0;
+};
+
+/// The final pose of one candidate and how it was obtained.
+struct BrickPoseEstimate
+{
+  std::string type_name;
+  Eigen::Vector3d dimensions_m = Eigen::Vector3d::Zero();
+  BrickRegistration registration;
+  RefinementMethod refinement = RefinementMethod::kNone;
+  /// Canonical final T_cam_brick.
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  /// Set when refinement == kCorrection.
+  PoseCorrection correction;
+  /// Set when refinement == kIcp.
+  IcpRefinement icp;
+  double refinement_ms = 0.0;
+};
+
+class BrickPoseEstimator
+{
+public:
+  /// Builds the model cloud of every catalogue type once. Throws ConfigError.
+  BrickPoseEstimator(const BrickCatalogue& catalogue, const BrickPoseEstimatorParams& params);
+
+  /// Stage 5. Throws InputError when the candidate cannot be registered
+  /// (unknown type, too few points) and when Super4PCS finds no pose.
+  BrickRegistration registerCandidate(const BrickCandidate& candidate) const;
+
+  /// Stage 6 from a registration. Throws InputError when the correction
+  /// rejects the input as degenerate.
+  BrickPoseEstimate refine(const BrickCandidate& candidate, const BrickRegistration& registration) const;
+
+  /// Both stages.
+  BrickPoseEstimate estimate(const BrickCandidate& candidate) const;
+
+  const BrickPoseEstimatorParams& params() const { return params_; }
+  const BrickCatalogue& catalogue() const { return catalogue_; }
+
+private:
+  BrickCatalogue catalogue_;
+  BrickPoseEstimatorParams params_;
+  registration::Super4PCS super4pcs_;
+  std::map<std::string, registration::PointSet> models_;
+};
+}  // namespace brick_pose

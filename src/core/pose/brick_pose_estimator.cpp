@@ -1,0 +1,104 @@
+#include "brick_pose/pose/brick_pose_estimator.h"
+
+#include <chrono>
+
+#include "brick_pose/common/errors.h"
+#include "brick_pose/correction/measured_face.h"
+#include "brick_pose/registration/brick_symmetry.h"
+#include "brick_pose/registration/model_cloud.h"
+
+namespace brick_pose
+{
+namespace
+{
+double millisecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+MeasuredFace measuredFaceOf(const BrickCandidate& candidate)
+{
+  MeasuredFace face;
+  face.t1_m = candidate.t1_m;
+  face.t2_m = candidate.t2_m;
+  face.centroid_m = candidate.plane.centroid_m;
+  face.normal = candidate.normal;
+  return face;
+}
+}  // namespace
+
+void BrickPoseEstimatorParams::validate() const
+{
+  super4pcs.validate();
+  if (!(model_spacing_m > 0.0)) throw ConfigError("parameter 'model_spacing_m' must be > 0");
+  icp.validate();
+}
+
+BrickPoseEstimator::BrickPoseEstimator(const BrickCatalogue& catalogue, const BrickPoseEstimatorParams& params)
+  : catalogue_(catalogue), params_(params), super4pcs_(params.super4pcs)
+{
+  params_.validate();
+  if (catalogue_.empty()) throw ConfigError("brick pose estimator: the catalogue is empty");
+  registration::ModelCloudOptions options;
+  options.spacing_m = params_.model_spacing_m;
+  for (const BrickType& type : catalogue_.types())
+    models_[type.name] = registration::buildBrickModelCloud(type, options);
+}
+
+BrickRegistration BrickPoseEstimator::registerCandidate(const BrickCandidate& candidate) const
+{
+  const auto start = std::chrono::steady_clock::now();
+  const auto model = models_.find(candidate.type_name);
+  if (model == models_.end())
+    throw InputError("candidate of unknown brick type '" + candidate.type_name + "'");
+  if (!candidate.points || candidate.points->size() < 4)
+    throw InputError("candidate '" + candidate.type_name + "' has fewer than 4 points");
+  registration::PointSet target = registration::fromPcl(*candidate.points);
+  // The model carries normals and the segment does not: register points only.
+  registration::PointSet source;
+  source.points = model->second.points;
+  BrickRegistration registration;
+  registration.result = super4pcs_.align(source, target);
+  registration.elapsed_ms = millisecondsSince(start);
+  if (!registration.result.success)
+    throw InputError("Super4PCS found no pose for '" + candidate.type_name + "': " + registration.result.reason);
+  // A face seen from one side: z toward the camera, then a fixed x sign.
+  registration.pose =
+      registration::canonicalisePose(registration.result.source_to_target, registration::ModelSymmetry::kRectangle);
+  return registration;
+}
+
+BrickPoseEstimate BrickPoseEstimator::refine(const BrickCandidate& candidate, const BrickRegistration& registration) const
+{
+  const BrickType& type = catalogue_.at(candidate.type_name);
+  BrickPoseEstimate estimate;
+  estimate.type_name = type.name;
+  estimate.dimensions_m = type.dimensions_m();
+  estimate.registration = registration;
+  estimate.refinement = params_.refinement;
+  const auto start = std::chrono::steady_clock::now();
+  switch (params_.refinement)
+  {
+    case RefinementMethod::kCorrection:
+      estimate.correction = correctPose(registration.pose, type, measuredFaceOf(candidate), params_.correction);
+      estimate.pose = estimate.correction.corrected_pose;
+      break;
+    case RefinementMethod::kIcp:
+      estimate.icp = refinePoseWithIcp(registration.pose, type, *candidate.points, params_.icp);
+      estimate.pose = estimate.icp.refined_pose;
+      break;
+    case RefinementMethod::kNone:
+    default:
+      estimate.pose = registration.pose;
+      break;
+  }
+  estimate.refinement_ms = millisecondsSince(start);
+  estimate.pose = registration::canonicalisePose(estimate.pose, registration::ModelSymmetry::kRectangle);
+  return estimate;
+}
+
+BrickPoseEstimate BrickPoseEstimator::estimate(const BrickCandidate& candidate) const
+{
+  return refine(candidate, registerCandidate(candidate));
+}
+}  // namespace brick_pose
