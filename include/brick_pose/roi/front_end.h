@@ -34,8 +34,10 @@ struct FrontEndParams
   HsvSegmenterParams hsv;
   RegionGrowingParams region_growing;
   /// Applied to each segment's points, not to the whole frame. Defaults
-  /// keep the front end fast: crop and a 5 mm voxel grid on, SOR and MLS off
-  /// (the plane fit already rejects outliers).
+  /// keep the front end fast: only the depth crop is on. Large segments are
+  /// already thinned in the image (RoiFilterParams::max_points), the robust
+  /// plane fit drops outliers, and the outline geometry comes from the mask,
+  /// so the voxel grid, SOR and MLS are optional extras.
   CloudProcessorParams cloud = defaultSegmentCloudParams();
   RoiFilterParams roi;
 
@@ -73,7 +75,15 @@ public:
   /// Throws ConfigError for an empty catalogue or a bad parameter.
   FrontEnd(const BrickCatalogue& catalogue, const FrontEndParams& params = FrontEndParams());
 
+  /// Segmentation then ROI filtration of one frame.
   FrontEndResult process(const RgbdFrame& frame) const;
+
+  /// The two halves of process(), for running them in separate nodelets:
+  /// stage 3, the segments of the configured mode ...
+  std::vector<Segment> segment(const RgbdFrame& frame) const;
+  /// ... and stage 4, appending candidates, rejections and the ROI and cloud
+  /// timings of `segments` to `result`.
+  void filterSegments(const RgbdFrame& frame, const std::vector<Segment>& segments, FrontEndResult& result) const;
 
   const FrontEndParams& params() const { return params_; }
 

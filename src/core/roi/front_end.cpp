@@ -38,8 +38,7 @@ CloudProcessorParams FrontEndParams::defaultSegmentCloudParams()
 {
   CloudProcessorParams params;
   params.crop_enabled = true;
-  params.voxel_enabled = true;
-  params.voxel_leaf_m = 0.005;
+  params.voxel_enabled = false;
   params.outlier_removal_enabled = false;
   params.mls_enabled = false;
   return params;
@@ -54,26 +53,34 @@ FrontEnd::FrontEnd(const BrickCatalogue& catalogue, const FrontEndParams& params
 {
 }
 
+std::vector<Segment> FrontEnd::segment(const RgbdFrame& frame) const
+{
+  return params_.mode == SegmentationMode::kHsv ? hsv_segmenter_.segment(frame, catalogue_)
+                                                : region_growing_segmenter_.segment(frame);
+}
+
+void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>& segments,
+                              FrontEndResult& result) const
+{
+  const auto roi_start = Clock::now();
+  const double cloud_ms_before = result.timings.cloud.total();
+  for (const Segment& segment : segments)
+  {
+    RoiOutcome outcome = roi_filter_.filterSplitting(frame, segment, &result.timings.cloud);
+    std::move(outcome.candidates.begin(), outcome.candidates.end(), std::back_inserter(result.candidates));
+    for (std::string& reason : outcome.rejections)
+      result.rejections.push_back({segment.type_name, segment.bounding_box_px, segment.area_px, std::move(reason)});
+  }
+  result.timings.roi_ms = millisecondsSince(roi_start) - (result.timings.cloud.total() - cloud_ms_before);
+}
+
 FrontEndResult FrontEnd::process(const RgbdFrame& frame) const
 {
   FrontEndResult result;
   const auto frame_start = Clock::now();
-  const std::vector<Segment> segments = params_.mode == SegmentationMode::kHsv
-                                            ? hsv_segmenter_.segment(frame, catalogue_)
-                                            : region_growing_segmenter_.segment(frame);
+  const std::vector<Segment> segments = segment(frame);
   result.timings.segmentation_ms = millisecondsSince(frame_start);
-
-  const auto roi_start = Clock::now();
-  for (const Segment& segment : segments)
-  {
-    RoiResult outcome = roi_filter_.filter(frame, segment, &result.timings.cloud);
-    if (auto* candidate = std::get_if<BrickCandidate>(&outcome))
-      result.candidates.push_back(std::move(*candidate));
-    else
-      result.rejections.push_back(
-          {segment.type_name, segment.bounding_box_px, segment.area_px, std::get<std::string>(outcome)});
-  }
-  result.timings.roi_ms = millisecondsSince(roi_start) - result.timings.cloud.total();
+  filterSegments(frame, segments, result);
   result.timings.total_ms = millisecondsSince(frame_start);
   return result;
 }
