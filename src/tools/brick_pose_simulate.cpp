@@ -61,13 +61,13 @@ ToolOptions parseArguments(int argc, char** argv)
     if (name == "output")
       options.output = value;
     else if (name == "frames")
-      options.frames = static_cast<int>(brick_pose::sim::parseInteger("frames", value));
+      options.frames = static_cast<int>(brick_pose::parseInteger("frames", value));
     else if (name == "rate")
-      options.rate_hz = brick_pose::sim::parseDouble("rate", value);
+      options.rate_hz = brick_pose::parseDouble("rate", value);
     else if (name == "camera-ns")
       options.camera_ns = value;
     else if (name == "new-scene-every")
-      options.new_scene_every = static_cast<int>(brick_pose::sim::parseInteger("new-scene-every", value));
+      options.new_scene_every = static_cast<int>(brick_pose::parseInteger("new-scene-every", value));
     else if (name == "frame-id")
       options.frame_id = value;
     else

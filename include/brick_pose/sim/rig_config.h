@@ -12,6 +12,7 @@
 
 #include "brick_pose/camera/pinhole_camera.h"
 #include "brick_pose/catalogue/brick_catalogue.h"
+#include "brick_pose/common/param_parsing.h"
 #include "brick_pose/sim/scene_generator.h"
 #include "brick_pose/sim/sensor_model.h"
 
@@ -28,8 +29,7 @@ struct RigConfig
   std::uint64_t seed = 1;
 };
 
-/// Returns a parameter's value as text, or nothing when it is not set.
-using ParamLookup = std::function<std::optional<std::string>(const std::string& name)>;
+using brick_pose::ParamLookup;
 
 /// Names understood by rigConfigFrom(), with their meaning (for --help).
 const std::vector<std::pair<std::string, std::string>>& rigParameterHelp();
@@ -37,11 +37,5 @@ const std::vector<std::pair<std::string, std::string>>& rigParameterHelp();
 /// Builds and validates a RigConfig. Unset parameters keep their defaults.
 /// Throws ConfigError naming the parameter on a bad value.
 RigConfig rigConfigFrom(const ParamLookup& lookup);
-
-/// Parses a number, naming `name` in the ConfigError when `text` is not one.
-double parseDouble(const std::string& name, const std::string& text);
-long long parseInteger(const std::string& name, const std::string& text);
-bool parseBool(const std::string& name, const std::string& text);
-std::vector<std::string> splitList(const std::string& text);
 }  // namespace sim
 }  // namespace brick_pose

@@ -9,61 +9,6 @@ namespace brick_pose
 {
 namespace sim
 {
-double parseDouble(const std::string& name, const std::string& text)
-{
-  std::size_t used = 0;
-  double value = 0.0;
-  try
-  {
-    value = std::stod(text, &used);
-  }
-  catch (const std::exception&)
-  {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(value))
-    throw ConfigError("parameter '" + name + "': '" + text + "' is not a finite number");
-  return value;
-}
-
-long long parseInteger(const std::string& name, const std::string& text)
-{
-  std::size_t used = 0;
-  long long value = 0;
-  try
-  {
-    value = std::stoll(text, &used);
-  }
-  catch (const std::exception&)
-  {
-    used = 0;
-  }
-  if (used == 0 || used != text.size())
-    throw ConfigError("parameter '" + name + "': '" + text + "' is not an integer");
-  return value;
-}
-
-bool parseBool(const std::string& name, const std::string& text)
-{
-  if (text == "true" || text == "1" || text == "True") return true;
-  if (text == "false" || text == "0" || text == "False") return false;
-  throw ConfigError("parameter '" + name + "': '" + text + "' is not true or false");
-}
-
-std::vector<std::string> splitList(const std::string& text)
-{
-  std::vector<std::string> items;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, ','))
-  {
-    const auto first = item.find_first_not_of(" []'\"");
-    const auto last = item.find_last_not_of(" []'\"");
-    if (first != std::string::npos) items.push_back(item.substr(first, last - first + 1));
-  }
-  return items;
-}
-
 const std::vector<std::pair<std::string, std::string>>& rigParameterHelp()
 {
   static const std::vector<std::pair<std::string, std::string>> help = {
@@ -95,30 +40,8 @@ const std::vector<std::pair<std::string, std::string>>& rigParameterHelp()
 
 namespace
 {
-class Reader
-{
-public:
-  explicit Reader(const ParamLookup& lookup) : lookup_(lookup) {}
 
-  void number(const std::string& name, double& target) const
-  {
-    if (const auto text = lookup_(name)) target = parseDouble(name, *text);
-  }
-  void integer(const std::string& name, int& target) const
-  {
-    if (const auto text = lookup_(name)) target = static_cast<int>(parseInteger(name, *text));
-  }
-  void flag(const std::string& name, bool& target) const
-  {
-    if (const auto text = lookup_(name)) target = parseBool(name, *text);
-  }
-  std::optional<std::string> text(const std::string& name) const { return lookup_(name); }
-
-private:
-  const ParamLookup& lookup_;
-};
-
-void readCamera(const Reader& read, PinholeCamera& camera)
+void readCamera(const ParamReader& read, PinholeCamera& camera)
 {
   read.integer("width", camera.width_px);
   read.integer("height", camera.height_px);
@@ -129,7 +52,7 @@ void readCamera(const Reader& read, PinholeCamera& camera)
   camera.validate();
 }
 
-void readSensor(const Reader& read, SensorModel& sensor)
+void readSensor(const ParamReader& read, SensorModel& sensor)
 {
   if (const auto lighting = read.text("lighting")) sensor.lighting = lightingFromString(*lighting);
   read.number("baseline_m", sensor.baseline_m);
@@ -140,7 +63,7 @@ void readSensor(const Reader& read, SensorModel& sensor)
   sensor.validate();
 }
 
-void readScene(const Reader& read, SceneParams& scene)
+void readScene(const ParamReader& read, SceneParams& scene)
 {
   if (const auto kind = read.text("scene")) scene.kind = sceneKindFromString(*kind);
   if (const auto types = read.text("types")) scene.types = splitList(*types);
@@ -155,7 +78,7 @@ void readScene(const Reader& read, SceneParams& scene)
 
 RigConfig rigConfigFrom(const ParamLookup& lookup)
 {
-  const Reader read(lookup);
+  const ParamReader read(lookup);
   RigConfig config;
   if (const auto path = read.text("catalogue_path"))
     if (!path->empty()) config.catalogue = BrickCatalogue::fromYamlFile(*path);
