@@ -52,6 +52,9 @@ struct BrickCandidate
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< Unit, toward the camera.
   double length_m = 0.0;  ///< Mean of the two long quad edges in 3D.
   double width_m = 0.0;   ///< Mean of the two short quad edges in 3D.
+  /// Area inside the segment's outline over the quad's area (1 for a whole,
+  /// unoccluded face; lower for notched or irregular segments).
+  double fill_ratio = 0.0;
   /// True when length and width match the catalogue type within tolerance
   /// (false for a partly occluded face that was still accepted).
   bool complete = false;

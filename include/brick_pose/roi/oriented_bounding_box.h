@@ -30,7 +30,9 @@ OrientedBoundingBox computeOrientedBoundingBox(const pcl::PointCloud<pcl::PointX
 struct DimensionTolerance
 {
   double tolerance_m = 0.03;       ///< Allowed excess over length/width (noise, edge pixels).
-  double max_thickness_m = 0.03;   ///< A top face is flat; more means a side face is included.
+  /// A top face is flat; more (beyond the spread of the depth noise) means a
+  /// side face is included.
+  double max_thickness_m = 0.03;
   /// A partly occluded plate is still a candidate when at least this fraction
   /// of its length and width is visible.
   double min_visible_fraction = 0.4;

@@ -5,8 +5,9 @@
 // The frame is thinned by taking every `stride_px`-th pixel (not a voxel
 // grid), so every point keeps the pixel it came from; normals come from
 // integral images on that organised cloud. Region growing leaves out the
-// border of each face (normals bend there), so each region's footprint is
-// then regrown at full resolution over the pixels lying on the region's plane.
+// border of each face (normals bend there) and splits noisy faces, so each
+// region, largest first, is then flood-filled at full resolution over the
+// pixels lying on its plane that no larger region has claimed.
 
 #include <vector>
 
@@ -17,21 +18,21 @@ namespace brick_pose
 {
 struct RegionGrowingParams
 {
-  int stride_px = 4;                     ///< Thinning of the frame before normals.
-  double normal_smoothing_size = 6.0;    ///< Integral-image window, in strided pixels.
+  int stride_px = 6;                     ///< Thinning of the frame before normals.
+  double normal_smoothing_size = 8.0;    ///< Integral-image window, in strided pixels.
   double max_depth_change_factor = 0.02; ///< Normals are not smoothed across depth jumps larger than this x depth.
   int neighbours = 8;                    ///< k of the region-growing neighbourhood.
-  double smoothness_threshold_deg = 5.0; ///< Max angle between neighbouring normals in one region.
-  double curvature_threshold = 0.02;     ///< Points above this curvature do not seed/grow regions.
-  int min_region_points = 40;            ///< Smaller regions are dropped (strided points).
-  /// Full-resolution footprint: pixels within this distance of the region's
-  /// plane and connected to the region join the segment.
-  bool regrow_footprint = true;
+  double smoothness_threshold_deg = 6.0; ///< Max angle between neighbouring normals in one region.
+  double curvature_threshold = 0.03;     ///< Points above this curvature do not seed/grow regions.
+  int min_region_points = 30;            ///< Smaller regions are dropped (strided points).
+  /// Full-resolution footprint: a pixel is on a region's plane within
+  /// max(footprint_plane_distance_m, 3 sigma), sigma = depth_noise_at_1m_m * z^2.
   double footprint_plane_distance_m = 0.006;
-  int min_area_px = 400;                 ///< Footprints smaller than this are dropped.
-  /// A footprint sharing more than this fraction of its pixels with a larger
-  /// one is the same face (split into two regions) and is dropped.
+  double depth_noise_at_1m_m = 0.0016;
+  /// A region whose own pixels are mostly (more than this fraction) claimed
+  /// by a larger footprint is a piece of the same face and is dropped.
   double max_footprint_overlap = 0.5;
+  int min_area_px = 400;                 ///< Footprints smaller than this are dropped.
 
   void validate() const;  ///< Throws ConfigError naming the field.
 };

@@ -5,7 +5,10 @@
 #include <limits>
 #include <sstream>
 
+#include <opencv2/imgproc.hpp>
+
 #include "brick_pose/frame/organized_cloud.h"
+#include "brick_pose/roi/plate_splitter.h"
 
 namespace brick_pose
 {
@@ -42,6 +45,17 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr planeInliers(const pcl::PointCloud<pcl::Poin
   return inliers;
 }
 
+/// Every k-th index so that about `max_count` remain (all when max_count is 0).
+std::vector<int> thinned(const std::vector<int>& indices, int max_count)
+{
+  if (max_count <= 0 || static_cast<int>(indices.size()) <= max_count) return indices;
+  const std::size_t step = (indices.size() + max_count - 1) / static_cast<std::size_t>(max_count);
+  std::vector<int> kept;
+  kept.reserve(indices.size() / step + 1);
+  for (std::size_t i = 0; i < indices.size(); i += step) kept.push_back(indices[i]);
+  return kept;
+}
+
 /// Index (0 or 1) of the corner starting the first long edge of a
 /// clockwise quad, then moved to the upper of the two long edges.
 int longEdgeStart(const QuadCorners& corners_px, const std::array<Eigen::Vector3d, 4>& corners_m)
@@ -63,14 +77,55 @@ RoiFilter::RoiFilter(const BrickCatalogue& catalogue, const RoiFilterParams& par
 
 RoiResult RoiFilter::filter(const RgbdFrame& frame, const Segment& segment, CloudProcessingTimings* cloud_timings) const
 {
+  BrickCandidate candidate;
+  if (auto reason = measure(frame, segment, cloud_timings, candidate)) return *reason;
+  if (auto reason = assignType(segment, candidate)) return *reason;
+  return candidate;
+}
+
+RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& segment,
+                                      CloudProcessingTimings* cloud_timings) const
+{
+  RoiOutcome outcome;
+  BrickCandidate candidate;
+  std::optional<std::string> reason = measure(frame, segment, cloud_timings, candidate);
+  const bool measured = !reason;
+  if (!reason) reason = assignType(segment, candidate);
+  if (!reason)
+  {
+    outcome.candidates.push_back(std::move(candidate));
+    return outcome;
+  }
+  const BrickType* type = segment.type_name.empty() ? nullptr : catalogue_.find(segment.type_name);
+  const std::vector<Segment> parts =
+      measured && type ? splitSideBySide(frame, segment, candidate, *type, params_.dimensions.tolerance_m)
+                       : std::vector<Segment>();
+  if (parts.empty())
+  {
+    outcome.rejections.push_back(*reason);
+    return outcome;
+  }
+  for (const Segment& part : parts)
+  {
+    RoiResult result = filter(frame, part, cloud_timings);
+    if (auto* part_candidate = std::get_if<BrickCandidate>(&result))
+      outcome.candidates.push_back(std::move(*part_candidate));
+    else
+      outcome.rejections.push_back("part of a split segment: " + std::get<std::string>(result));
+  }
+  return outcome;
+}
+
+std::optional<std::string> RoiFilter::measure(const RgbdFrame& frame, const Segment& segment,
+                                              CloudProcessingTimings* cloud_timings, BrickCandidate& candidate) const
+{
   if (static_cast<int>(segment.pixel_indices.size()) < params_.min_points)
     return describe("only", static_cast<double>(segment.pixel_indices.size()), "depth pixels, need",
                     params_.min_points);
 
-  BrickCandidate candidate;
   candidate.pixel_indices = segment.pixel_indices;
   candidate.area_px = segment.area_px;
-  const pcl::PointCloud<pcl::PointXYZ>::Ptr raw = backProjectPixels(frame, segment.pixel_indices);
+  const pcl::PointCloud<pcl::PointXYZ>::Ptr raw = backProjectPixels(frame, thinned(segment.pixel_indices, params_.max_points));
   ProcessedCloud processed = cloud_processor_.process(raw);
   if (cloud_timings)
   {
@@ -100,9 +155,7 @@ RoiResult RoiFilter::filter(const RgbdFrame& frame, const Segment& segment, Clou
   // near the extended plane, or flying pixels, are dropped here).
   candidate.points = planeInliers(*candidate.points, candidate.plane, params_.plane);
   candidate.obb = computeOrientedBoundingBox(*candidate.points);
-  if (auto reason = fitOutline(frame, segment, candidate)) return *reason;
-  if (auto reason = assignType(segment, candidate)) return *reason;
-  return candidate;
+  return fitOutline(frame, segment, candidate);
 }
 
 std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const Segment& segment,
@@ -118,6 +171,7 @@ std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const S
     if (!candidate.plane.intersectRay(camera.ray((*quad)[k].x(), (*quad)[k].y()), corners_m[k]))
       return std::string("a quad corner's ray misses the segment plane");
 
+  candidate.fill_ratio = std::abs(cv::contourArea(outline)) / std::max(1e-9, std::abs(signedAreaPx(*quad)));
   const int start = longEdgeStart(*quad, corners_m);
   candidate.corners_px = rotated(*quad, start);
   candidate.corners_m = rotated(corners_m, start);
@@ -141,7 +195,10 @@ std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const S
 std::optional<std::string> RoiFilter::assignType(const Segment& segment, BrickCandidate& candidate) const
 {
   const DimensionTolerance& tolerance = params_.dimensions;
-  const double thickness_m = candidate.obb.valid ? candidate.obb.extents_m.z() : 0.0;
+  // The box is measured on plane inliers, whose spread grows with depth
+  // noise; only thickness beyond that spread says "not a flat face".
+  const double noise_spread_m = 6.0 * candidate.plane.rms_m;
+  const double thickness_m = candidate.obb.valid ? std::max(0.0, candidate.obb.extents_m.z() - noise_spread_m) : 0.0;
   auto complete = [&](const BrickType& type, double tolerance_m) {
     return std::abs(candidate.length_m - type.length_m) <= tolerance_m &&
            std::abs(candidate.width_m - type.width_m) <= tolerance_m;
@@ -159,6 +216,8 @@ std::optional<std::string> RoiFilter::assignType(const Segment& segment, BrickCa
   }
 
   // Colour-free: only whole faces can be told apart by size.
+  if (candidate.fill_ratio < params_.min_fill_ratio)
+    return describe("segment fills", candidate.fill_ratio, "of its quad, less than", params_.min_fill_ratio);
   if (thickness_m > tolerance.max_thickness_m)
     return describe("thickness", thickness_m, "m exceeds", tolerance.max_thickness_m);
   const BrickType* best = nullptr;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <opencv2/imgproc.hpp>
 
@@ -14,6 +15,8 @@ void HsvSegmenterParams::validate() const
   if (min_area_px < 1) throw ConfigError("hsv segmenter: min_area_px must be >= 1");
   if (open_kernel_px < 0) throw ConfigError("hsv segmenter: open_kernel_px must be >= 0");
   if (close_kernel_px < 0) throw ConfigError("hsv segmenter: close_kernel_px must be >= 0");
+  if (coarse_factor < 1) throw ConfigError("hsv segmenter: coarse_factor must be >= 1");
+  if (!(depth_jump_m >= 0.0)) throw ConfigError("hsv segmenter: depth_jump_m must be >= 0");
 }
 
 HsvSegmenter::HsvSegmenter(const HsvSegmenterParams& params) : params_(params) { params_.validate(); }
@@ -46,8 +49,8 @@ void HsvSegmenter::cleanMask(cv::Mat& mask) const
                      cv::getStructuringElement(cv::MORPH_RECT, {params_.close_kernel_px, params_.close_kernel_px}));
 }
 
-std::vector<Segment> HsvSegmenter::components(const cv::Mat& mask, const cv::Mat& depth_m,
-                                              const std::string& type_name) const
+std::vector<Segment> HsvSegmenter::components(const cv::Mat& mask, const cv::Mat& depth_m, const std::string& type_name,
+                                              const cv::Rect& roi_px, int image_width_px) const
 {
   cv::Mat labels, stats, centroids;
   const int label_count = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
@@ -56,46 +59,146 @@ std::vector<Segment> HsvSegmenter::components(const cv::Mat& mask, const cv::Mat
   {
     const int area = stats.at<int>(label, cv::CC_STAT_AREA);
     if (area < params_.min_area_px) continue;
+    const cv::Rect local_box(stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
+                             stats.at<int>(label, cv::CC_STAT_WIDTH), stats.at<int>(label, cv::CC_STAT_HEIGHT));
     Segment segment;
     segment.type_name = type_name;
     segment.area_px = area;
-    segment.bounding_box_px = cv::Rect(stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
-                                       stats.at<int>(label, cv::CC_STAT_WIDTH), stats.at<int>(label, cv::CC_STAT_HEIGHT));
-    const cv::Rect& box = segment.bounding_box_px;
-    segment.mask = cv::Mat::zeros(box.size(), CV_8UC1);
+    segment.bounding_box_px = local_box + roi_px.tl();
+    segment.mask = cv::Mat::zeros(local_box.size(), CV_8UC1);
     segment.pixel_indices.reserve(static_cast<std::size_t>(area));
-    for (int v = box.y; v < box.y + box.height; ++v)
+    for (int y = local_box.y; y < local_box.y + local_box.height; ++y)
     {
-      const int* label_row = labels.ptr<int>(v);
+      const int* label_row = labels.ptr<int>(y);
+      const int v = y + roi_px.y;
       const float* depth_row = depth_m.ptr<float>(v);
-      std::uint8_t* mask_row = segment.mask.ptr<std::uint8_t>(v - box.y);
-      for (int u = box.x; u < box.x + box.width; ++u)
+      std::uint8_t* mask_row = segment.mask.ptr<std::uint8_t>(y - local_box.y);
+      for (int x = local_box.x; x < local_box.x + local_box.width; ++x)
       {
-        if (label_row[u] != label) continue;
-        mask_row[u - box.x] = 255;
-        if (!std::isnan(depth_row[u])) segment.pixel_indices.push_back(v * mask.cols + u);
+        if (label_row[x] != label) continue;
+        mask_row[x - local_box.x] = 255;
+        const int u = x + roi_px.x;
+        if (!std::isnan(depth_row[u])) segment.pixel_indices.push_back(v * image_width_px + u);
       }
     }
     segments.push_back(std::move(segment));
   }
-  std::sort(segments.begin(), segments.end(),
-            [](const Segment& a, const Segment& b) { return a.area_px > b.area_px; });
   return segments;
+}
+
+void HsvSegmenter::cutAtDepthJumps(cv::Mat& mask, const cv::Mat& depth_m) const
+{
+  if (params_.depth_jump_m <= 0.0) return;
+  const float jump = static_cast<float>(params_.depth_jump_m);
+  const cv::Mat original = mask.clone();
+  // Depth of the mask pixel at (y, x), NaN outside the mask or the image.
+  auto depthAt = [&](int y, int x) {
+    if (y < 0 || x < 0 || y >= mask.rows || x >= mask.cols || !original.at<std::uint8_t>(y, x))
+      return std::numeric_limits<float>::quiet_NaN();
+    return depth_m.at<float>(y, x);
+  };
+  // First valid depth from (y, x) stepping by (dy, dx), within a few pixels:
+  // stereo shadows and flying-pixel dropouts leave short gaps at depth edges.
+  constexpr int kMaxGapPx = 4;
+  auto firstValid = [&](int y, int x, int dy, int dx) {
+    for (int step = 1; step <= kMaxGapPx; ++step)
+    {
+      const int yy = y + step * dy, xx = x + step * dx;
+      if (yy < 0 || xx < 0 || yy >= mask.rows || xx >= mask.cols || !original.at<std::uint8_t>(yy, xx)) break;
+      const float z = depth_m.at<float>(yy, xx);
+      if (!std::isnan(z)) return z;
+    }
+    return std::numeric_limits<float>::quiet_NaN();
+  };
+  auto differ = [&](float a, float b) { return std::abs(a - b) > jump; };  // false when either is NaN
+  // A jump is marked on both sides, so that two cleared pixels separate the
+  // plates even under 8-connectivity. Only jumps to another mask pixel
+  // count: the outline against the background keeps its pixels. A pixel
+  // without depth is cleared when the depths on either side of it differ.
+  for (int y = 0; y < mask.rows; ++y)
+  {
+    const std::uint8_t* row = original.ptr<std::uint8_t>(y);
+    for (int x = 0; x < mask.cols; ++x)
+    {
+      if (!row[x]) continue;
+      const float z = depth_m.at<float>(y, x);
+      bool cut = false;
+      if (std::isnan(z))
+        cut = differ(firstValid(y, x, 0, -1), firstValid(y, x, 0, 1)) ||
+              differ(firstValid(y, x, -1, 0), firstValid(y, x, 1, 0));
+      else
+        cut = differ(z, depthAt(y, x + 1)) || differ(z, depthAt(y, x - 1)) || differ(z, depthAt(y + 1, x)) ||
+              differ(z, depthAt(y - 1, x));
+      if (cut) mask.at<std::uint8_t>(y, x) = 0;
+    }
+  }
+}
+
+std::vector<cv::Rect> HsvSegmenter::coarseBoxes(const cv::Mat& coarse_hsv, const HsvRange& range, cv::Size image_size) const
+{
+  const int factor = params_.coarse_factor;
+  const cv::Mat coarse_mask = thresholdHsv(coarse_hsv, range);
+  // Half the area a plate of min_area_px would have in the coarse image:
+  // generous, the full-resolution pass applies the real threshold.
+  const int min_coarse_area = std::max(1, params_.min_area_px / (2 * factor * factor));
+  if (cv::countNonZero(coarse_mask) < min_coarse_area) return {};
+  cv::Mat labels, stats, centroids;
+  const int label_count = cv::connectedComponentsWithStats(coarse_mask, labels, stats, centroids, 8, CV_32S);
+
+  const int pad = 2 * factor + params_.close_kernel_px + params_.open_kernel_px;
+  const cv::Rect image(cv::Point(0, 0), image_size);
+  std::vector<cv::Rect> boxes;
+  for (int label = 1; label < label_count; ++label)
+  {
+    if (stats.at<int>(label, cv::CC_STAT_AREA) < min_coarse_area) continue;
+    const cv::Rect coarse(stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
+                          stats.at<int>(label, cv::CC_STAT_WIDTH), stats.at<int>(label, cv::CC_STAT_HEIGHT));
+    boxes.push_back(cv::Rect(coarse.x * factor - pad, coarse.y * factor - pad, coarse.width * factor + 2 * pad,
+                             coarse.height * factor + 2 * pad) &
+                    image);
+  }
+  // Overlapping boxes would find the same full-resolution blob twice.
+  for (bool merged = true; merged;)
+  {
+    merged = false;
+    for (std::size_t i = 0; i < boxes.size() && !merged; ++i)
+      for (std::size_t j = i + 1; j < boxes.size() && !merged; ++j)
+        if ((boxes[i] & boxes[j]).area() > 0)
+        {
+          boxes[i] |= boxes[j];
+          boxes.erase(boxes.begin() + static_cast<std::ptrdiff_t>(j));
+          merged = true;
+        }
+  }
+  return boxes;
 }
 
 std::vector<Segment> HsvSegmenter::segment(const RgbdFrame& frame, const BrickCatalogue& catalogue) const
 {
-  cv::Mat hsv;
-  cv::cvtColor(frame.rgb, hsv, cv::COLOR_RGB2HSV);
+  const int factor = params_.coarse_factor;
+  const cv::Size image_size = frame.rgb.size();
+  cv::Mat coarse_rgb, coarse_hsv;
+  if (factor > 1)
+    cv::resize(frame.rgb, coarse_rgb, cv::Size(), 1.0 / factor, 1.0 / factor, cv::INTER_NEAREST);
+  else
+    coarse_rgb = frame.rgb;
+  cv::cvtColor(coarse_rgb, coarse_hsv, cv::COLOR_RGB2HSV);
+
   std::vector<Segment> segments;
   for (const BrickType& type : catalogue.types())
   {
-    cv::Mat mask = thresholdHsv(hsv, type.plate_hsv);
-    // Most types are absent from most frames: skip the morphology and the
-    // labelling when there cannot be a component large enough.
-    if (cv::countNonZero(mask) < params_.min_area_px) continue;
-    cleanMask(mask);
-    std::vector<Segment> found = components(mask, frame.depth_m, type.name);
+    std::vector<Segment> found;
+    for (const cv::Rect& box : coarseBoxes(coarse_hsv, type.plate_hsv, image_size))
+    {
+      cv::Mat hsv;
+      cv::cvtColor(frame.rgb(box), hsv, cv::COLOR_RGB2HSV);
+      cv::Mat mask = thresholdHsv(hsv, type.plate_hsv);
+      cleanMask(mask);
+      cutAtDepthJumps(mask, frame.depth_m(box));
+      std::vector<Segment> in_box = components(mask, frame.depth_m, type.name, box, image_size.width);
+      std::move(in_box.begin(), in_box.end(), std::back_inserter(found));
+    }
+    std::sort(found.begin(), found.end(), [](const Segment& a, const Segment& b) { return a.area_px > b.area_px; });
     std::move(found.begin(), found.end(), std::back_inserter(segments));
   }
   return segments;

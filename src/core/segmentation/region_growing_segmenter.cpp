@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <opencv2/imgproc.hpp>
 #include <pcl/features/integral_image_normal.h>
@@ -25,95 +26,87 @@ void require(bool condition, const char* field, const char* rule)
   if (!condition) throw ConfigError(std::string("region growing: ") + field + " " + rule);
 }
 
-/// Footprint of one region at full resolution: the pixels inside the
-/// region's (dilated) strided cells, or, when regrowing, the connected set of
-/// pixels on the region's plane that touches the region.
-Segment footprint(const RgbdFrame& frame, const pcl::PointCloud<pcl::PointXYZ>& strided,
-                  const std::vector<int>& source_pixels, const pcl::PointIndices& region,
-                  const RegionGrowingParams& params)
+/// Distance from the plane a pixel of depth z may have and still be on it:
+/// the configured floor or three sigmas of the sensor's axial noise.
+double planeTolerance(const RegionGrowingParams& params, double depth_m)
+{
+  return std::max(params.footprint_plane_distance_m, 3.0 * params.depth_noise_at_1m_m * depth_m * depth_m);
+}
+
+/// Full-resolution footprint of one region: the 4-connected pixels reachable
+/// from the region's own pixels over pixels lying on the region's plane and
+/// not claimed by an earlier (larger) footprint. Region growing leaves out
+/// the border of a face (normals bend there) and may split one face into
+/// several regions; the flood fill restores the border and the `claimed`
+/// image merges the pieces. Empty when the region's pixels are mostly taken.
+std::optional<Segment> floodFootprint(const RgbdFrame& frame, const pcl::PointCloud<pcl::PointXYZ>& strided,
+                                      const std::vector<int>& source_pixels, const pcl::PointIndices& region,
+                                      const RegionGrowingParams& params, cv::Mat& claimed)
 {
   const int width = frame.width_px();
   const int height = frame.height_px();
-  const int stride = params.stride_px;
+  std::uint8_t* taken = claimed.ptr<std::uint8_t>(0);
+  int already_taken = 0;
+  for (const int index : region.indices) already_taken += taken[source_pixels[index]] ? 1 : 0;
+  if (already_taken > params.max_footprint_overlap * static_cast<double>(region.indices.size())) return std::nullopt;
 
-  // Seed mask: the block of full-resolution pixels around every region point.
-  int u_min = width, v_min = height, u_max = -1, v_max = -1;
+  const pcl::PointCloud<pcl::PointXYZ> region_points(strided, region.indices);
+  const PlaneFit plane = fitPlane(region_points);
+  if (!plane.valid) return std::nullopt;
+  const float* depth = frame.depth_m.ptr<float>(0);
+  auto onPlane = [&](int pixel) {
+    const float z = depth[pixel];
+    if (std::isnan(z)) return false;
+    const Eigen::Vector3d point = frame.camera.backProject(pixel % width, pixel / width, z);
+    return std::abs(plane.signedDistance(point)) <= planeTolerance(params, z);
+  };
+
+  std::vector<int> footprint;
+  std::vector<int> frontier;
   for (const int index : region.indices)
   {
     const int pixel = source_pixels[index];
+    if (taken[pixel] || !onPlane(pixel)) continue;
+    taken[pixel] = 255;
+    frontier.push_back(pixel);
+  }
+  while (!frontier.empty())
+  {
+    const int pixel = frontier.back();
+    frontier.pop_back();
+    footprint.push_back(pixel);
+    const int u = pixel % width, v = pixel / width;
+    const int neighbours[4] = {u > 0 ? pixel - 1 : -1, u + 1 < width ? pixel + 1 : -1, v > 0 ? pixel - width : -1,
+                               v + 1 < height ? pixel + width : -1};
+    for (const int next : neighbours)
+      if (next >= 0 && !taken[next] && onPlane(next))
+      {
+        taken[next] = 255;
+        frontier.push_back(next);
+      }
+  }
+  if (static_cast<int>(footprint.size()) < params.min_area_px) return std::nullopt;
+
+  std::sort(footprint.begin(), footprint.end());
+  int u_min = width, v_min = height, u_max = 0, v_max = 0;
+  for (const int pixel : footprint)
+  {
     u_min = std::min(u_min, pixel % width);
     u_max = std::max(u_max, pixel % width);
     v_min = std::min(v_min, pixel / width);
     v_max = std::max(v_max, pixel / width);
   }
-  // Region growing leaves out a band of a few strided cells at the border.
-  const int margin = params.regrow_footprint ? 8 * stride : stride;
-  const cv::Rect box = cv::Rect(cv::Point(u_min - margin, v_min - margin), cv::Point(u_max + margin + 1, v_max + margin + 1)) &
-                       cv::Rect(0, 0, width, height);
-  cv::Mat seed = cv::Mat::zeros(box.size(), CV_8UC1);
-  for (const int index : region.indices)
-  {
-    const int pixel = source_pixels[index];
-    const cv::Point centre(pixel % width - box.x, pixel / width - box.y);
-    cv::rectangle(seed, cv::Rect(centre.x - stride / 2, centre.y - stride / 2, stride, stride), cv::Scalar(255), cv::FILLED);
-  }
-
   Segment segment;
-  segment.bounding_box_px = box;
-  cv::Mat mask = seed;
-  if (params.regrow_footprint)
-  {
-    pcl::PointCloud<pcl::PointXYZ> region_points(strided, region.indices);
-    const PlaneFit plane = fitPlane(region_points);
-    if (plane.valid)
-    {
-      cv::Mat on_plane = cv::Mat::zeros(box.size(), CV_8UC1);
-      for (int v = box.y; v < box.y + box.height; ++v)
-      {
-        const float* depth_row = frame.depth_m.ptr<float>(v);
-        std::uint8_t* out = on_plane.ptr<std::uint8_t>(v - box.y);
-        for (int u = box.x; u < box.x + box.width; ++u)
-        {
-          const float z = depth_row[u];
-          if (std::isnan(z)) continue;
-          const Eigen::Vector3d point = frame.camera.backProject(u, v, z);
-          if (std::abs(plane.signedDistance(point)) <= params.footprint_plane_distance_m) out[u - box.x] = 255;
-        }
-      }
-      // Small holes (no depth) inside the face belong to it.
-      cv::morphologyEx(on_plane, on_plane, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_RECT, {5, 5}));
-      cv::Mat labels;
-      const int label_count = cv::connectedComponents(on_plane, labels, 8, CV_32S);
-      std::vector<int> overlap(static_cast<std::size_t>(label_count), 0);
-      for (int v = 0; v < box.height; ++v)
-        for (int u = 0; u < box.width; ++u)
-          if (seed.at<std::uint8_t>(v, u) && labels.at<int>(v, u) > 0) ++overlap[labels.at<int>(v, u)];
-      const auto best = std::max_element(overlap.begin() + 1, overlap.end());
-      if (label_count > 1 && *best > 0)
-        mask = labels == static_cast<int>(best - overlap.begin());
-    }
-  }
-
-  segment.mask = mask;
-  segment.area_px = cv::countNonZero(mask);
-  for (int v = 0; v < box.height; ++v)
-  {
-    const std::uint8_t* mask_row = mask.ptr<std::uint8_t>(v);
-    const float* depth_row = frame.depth_m.ptr<float>(v + box.y);
-    for (int u = 0; u < box.width; ++u)
-      if (mask_row[u] && !std::isnan(depth_row[u + box.x])) segment.pixel_indices.push_back((v + box.y) * width + u + box.x);
-  }
+  segment.bounding_box_px = cv::Rect(cv::Point(u_min, v_min), cv::Point(u_max + 1, v_max + 1));
+  segment.mask = cv::Mat::zeros(segment.bounding_box_px.size(), CV_8UC1);
+  for (const int pixel : footprint) segment.mask.at<std::uint8_t>(pixel / width - v_min, pixel % width - u_min) = 255;
+  // Pixels without depth inside the face (dropouts) belong to its outline.
+  cv::morphologyEx(segment.mask, segment.mask, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_RECT, {3, 3}));
+  segment.area_px = cv::countNonZero(segment.mask);
+  segment.pixel_indices = std::move(footprint);
   return segment;
 }
-/// Number of image pixels two footprints share.
-int overlapPx(const Segment& a, const Segment& b)
-{
-  const cv::Rect common = a.bounding_box_px & b.bounding_box_px;
-  if (common.empty()) return 0;
-  const cv::Mat a_part = a.mask(common - a.bounding_box_px.tl());
-  const cv::Mat b_part = b.mask(common - b.bounding_box_px.tl());
-  return cv::countNonZero(a_part & b_part);
-}
+
 }  // namespace
 
 void RegionGrowingParams::validate() const
@@ -126,8 +119,9 @@ void RegionGrowingParams::validate() const
   require(curvature_threshold > 0.0, "curvature_threshold", "must be > 0");
   require(min_region_points >= 3, "min_region_points", "must be >= 3");
   require(footprint_plane_distance_m > 0.0, "footprint_plane_distance_m", "must be > 0");
+  require(depth_noise_at_1m_m >= 0.0, "depth_noise_at_1m_m", "must be >= 0");
   require(min_area_px >= 1, "min_area_px", "must be >= 1");
-  require(max_footprint_overlap > 0.0 && max_footprint_overlap <= 1.0, "max_footprint_overlap", "must be in (0, 1]");
+  require(max_footprint_overlap >= 0.0 && max_footprint_overlap <= 1.0, "max_footprint_overlap", "must be in [0, 1]");
 }
 
 RegionGrowingSegmenter::RegionGrowingSegmenter(const RegionGrowingParams& params) : params_(params) { params_.validate(); }
@@ -169,24 +163,15 @@ std::vector<Segment> RegionGrowingSegmenter::segment(const RgbdFrame& frame) con
   std::vector<pcl::PointIndices> regions;
   region_growing.extract(regions);
 
-  std::vector<Segment> footprints;
-  for (const pcl::PointIndices& region : regions)
-  {
-    Segment segment = footprint(frame, *strided, source_pixels, region, params_);
-    if (segment.area_px >= params_.min_area_px) footprints.push_back(std::move(segment));
-  }
-  std::sort(footprints.begin(), footprints.end(), [](const Segment& a, const Segment& b) { return a.area_px > b.area_px; });
-
-  // A face split into several regions regrows into the same footprint
-  // several times: keep the largest of overlapping footprints.
+  // Largest regions first, so that a face's biggest piece claims the face.
+  std::sort(regions.begin(), regions.end(),
+            [](const pcl::PointIndices& a, const pcl::PointIndices& b) { return a.indices.size() > b.indices.size(); });
+  cv::Mat claimed = cv::Mat::zeros(frame.depth_m.size(), CV_8UC1);
   std::vector<Segment> segments;
-  for (Segment& candidate : footprints)
-  {
-    const bool duplicate = std::any_of(segments.begin(), segments.end(), [&](const Segment& kept) {
-      return overlapPx(candidate, kept) > params_.max_footprint_overlap * candidate.area_px;
-    });
-    if (!duplicate) segments.push_back(std::move(candidate));
-  }
+  for (const pcl::PointIndices& region : regions)
+    if (std::optional<Segment> segment = floodFootprint(frame, *strided, source_pixels, region, params_, claimed))
+      segments.push_back(std::move(*segment));
+  std::sort(segments.begin(), segments.end(), [](const Segment& a, const Segment& b) { return a.area_px > b.area_px; });
   return segments;
 }
 }  // namespace brick_pose

@@ -1,0 +1,28 @@
+#pragma once
+// Plates of one colour that lie side by side at the same height (the rows of
+// an organised pile) merge into one colour segment wherever perspective hides
+// the 1-3 cm gap between them. Their least-area quad then measures the
+// brick's length one way and n widths (plus gaps) the other; this cuts such a
+// segment into its n plates.
+
+#include <vector>
+
+#include "brick_pose/catalogue/brick_catalogue.h"
+#include "brick_pose/frame/rgbd_frame.h"
+#include "brick_pose/roi/brick_candidate.h"
+#include "brick_pose/segmentation/segment.h"
+
+namespace brick_pose
+{
+/// How many plates of width `width_m` with gaps of at most a few cm fit in
+/// `across_m` (1 when it is a single plate).
+int sideBySideCount(double across_m, double width_m);
+
+/// The parts of `segment` (measured as `measured`: plane, ordered 3D corners)
+/// when one side of its quad is `type`'s length within `tolerance_m` and the
+/// other holds n >= 2 widths; empty otherwise. Cuts run parallel to the
+/// length, evenly spaced on the plane, or through the apex of a convexity
+/// defect deeper than 4 px (the visible end of a gap) close to that spacing.
+std::vector<Segment> splitSideBySide(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                                     const BrickType& type, double tolerance_m);
+}  // namespace brick_pose

@@ -1,0 +1,132 @@
+#include "brick_pose/roi/plate_splitter.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+#include "brick_pose/roi/least_area_quad.h"
+
+namespace brick_pose
+{
+namespace
+{
+/// Gaps between the rows of a pile are a few centimetres.
+constexpr double kMaxGapM = 0.04;
+constexpr double kMinDefectDepthPx = 4.0;
+
+/// Position across the merged face of a 3D point on its plane: 0 on the
+/// first long edge, 1 on the opposite one.
+struct AcrossCoordinate
+{
+  Eigen::Vector3d origin;
+  Eigen::Vector3d across;  // divided by its squared length
+
+  double operator()(const Eigen::Vector3d& point) const { return (point - origin).dot(across); }
+};
+
+/// Cut positions (fractions across), moved to the deepest nearby defect apex.
+std::vector<double> cutFractions(const Segment& segment, const BrickCandidate& measured, const PinholeCamera& camera,
+                                 const AcrossCoordinate& coordinate, int parts)
+{
+  std::vector<double> cuts;
+  for (int k = 1; k < parts; ++k) cuts.push_back(static_cast<double>(k) / parts);
+  std::vector<double> best_depth(cuts.size(), 0.0);
+
+  const std::vector<cv::Point> outline = largestOutline(segment.mask, segment.bounding_box_px.tl());
+  if (outline.size() < 4) return cuts;
+  std::vector<int> hull;
+  cv::convexHull(outline, hull, false, false);
+  std::vector<cv::Vec4i> defects;
+  try
+  {
+    if (hull.size() >= 3) cv::convexityDefects(outline, hull, defects);
+  }
+  catch (const cv::Exception&)
+  {
+    return cuts;
+  }
+  for (const cv::Vec4i& defect : defects)
+  {
+    const double depth_px = defect[3] / 256.0;
+    if (depth_px < kMinDefectDepthPx) continue;
+    const cv::Point apex = outline[static_cast<std::size_t>(defect[2])];
+    Eigen::Vector3d point;
+    if (!measured.plane.intersectRay(camera.ray(apex.x, apex.y), point)) continue;
+    const double fraction = coordinate(point);
+    for (std::size_t k = 0; k < cuts.size(); ++k)
+    {
+      const double nominal = static_cast<double>(k + 1) / parts;
+      if (std::abs(fraction - nominal) < 0.25 / parts && depth_px > best_depth[k])
+      {
+        best_depth[k] = depth_px;
+        cuts[k] = fraction;
+      }
+    }
+  }
+  return cuts;
+}
+}  // namespace
+
+int sideBySideCount(double across_m, double width_m)
+{
+  if (!(width_m > 0.0)) return 1;
+  const int count = static_cast<int>(std::floor((across_m + 0.03) / (width_m + 0.01)));
+  return std::max(1, count);
+}
+
+std::vector<Segment> splitSideBySide(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                                     const BrickType& type, double tolerance_m)
+{
+  const auto& c = measured.corners_m;
+  // Which side holds the plates: the other one must be the brick's length.
+  AcrossCoordinate coordinate;
+  coordinate.origin = c[0];
+  double across_m = 0.0;
+  if (std::abs(measured.length_m - type.length_m) <= tolerance_m && measured.width_m > type.width_m + tolerance_m)
+  {
+    coordinate.across = c[3] - c[0];
+    across_m = measured.width_m;
+  }
+  else if (std::abs(measured.width_m - type.length_m) <= tolerance_m && measured.length_m > type.width_m + tolerance_m)
+  {
+    coordinate.across = c[1] - c[0];
+    across_m = measured.length_m;
+  }
+  else
+    return {};
+  const int parts = sideBySideCount(across_m, type.width_m);
+  if (parts < 2 || across_m > parts * type.width_m + (parts - 1) * kMaxGapM + tolerance_m) return {};
+  coordinate.across /= coordinate.across.squaredNorm();
+
+  const std::vector<double> cuts = cutFractions(segment, measured, frame.camera, coordinate, parts);
+  const cv::Rect& box = segment.bounding_box_px;
+  std::vector<Segment> split(static_cast<std::size_t>(parts));
+  for (Segment& part : split)
+  {
+    part.type_name = segment.type_name;
+    part.bounding_box_px = box;
+    part.mask = cv::Mat::zeros(box.size(), CV_8UC1);
+  }
+  const int width = frame.width_px();
+  for (int y = 0; y < box.height; ++y)
+  {
+    const std::uint8_t* mask_row = segment.mask.ptr<std::uint8_t>(y);
+    const float* depth_row = frame.depth_m.ptr<float>(y + box.y);
+    for (int x = 0; x < box.width; ++x)
+    {
+      if (!mask_row[x]) continue;
+      const int u = x + box.x, v = y + box.y;
+      Eigen::Vector3d point;
+      if (!measured.plane.intersectRay(frame.camera.ray(u, v), point)) continue;
+      const double fraction = coordinate(point);
+      const auto index = static_cast<std::size_t>(std::upper_bound(cuts.begin(), cuts.end(), fraction) - cuts.begin());
+      Segment& part = split[index];
+      part.mask.at<std::uint8_t>(y, x) = 255;
+      ++part.area_px;
+      if (!std::isnan(depth_row[u])) part.pixel_indices.push_back(v * width + u);
+    }
+  }
+  return split;
+}
+}  // namespace brick_pose
