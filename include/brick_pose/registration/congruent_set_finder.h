@@ -1,0 +1,56 @@
+#pragma once
+// Finds the 4-point sets of the target congruent to a base (Super 4PCS sec. 4):
+// pairs at the two diagonal lengths come from the ShellPairIndex, are filtered
+// by normals, and are matched through the crossing points e = p + t (q - p)
+// hashed in a grid, with the angle between the two diagonals checked.
+
+#include <array>
+#include <functional>
+#include <utility>
+#include <vector>
+
+#include "brick_pose/registration/coplanar_base.h"
+#include "brick_pose/registration/point_set.h"
+#include "brick_pose/registration/shell_pair_index.h"
+
+namespace brick_pose
+{
+namespace registration
+{
+struct CongruenceTolerances
+{
+  double distance_m = 0.0;  ///< pair lengths and crossing points
+  double angle_rad = 0.0;  ///< between the two diagonals
+  double normal_rad = 0.0;  ///< normal angle checks (only with normals)
+};
+
+/// Target indices matching base points a, b, c, d in that order.
+using CongruentSet = std::array<int, 4>;
+
+class CongruentSetFinder
+{
+public:
+  /// `target` and `index` (built on target.points) must outlive the finder.
+  CongruentSetFinder(const PointSet& target, const ShellPairIndex& index);
+
+  /// Calls on_set for every congruent set found; on_set returns false to stop
+  /// the enumeration. Returns the number of sets reported.
+  long find(const CoplanarBase& base, const CongruenceTolerances& tolerances,
+            const std::function<bool(const CongruentSet&)>& on_set) const;
+
+  /// Ordered target pairs (p, q) that may play the base pair (base_p, base_q):
+  /// length r +- tolerance and, with normals, the same normal angles.
+  std::vector<std::pair<int, int>> orderedPairs(double radius_m, const Eigen::Vector3d& base_p,
+                                                const Eigen::Vector3d& base_q, const Eigen::Vector3d& base_np,
+                                                const Eigen::Vector3d& base_nq,
+                                                const CongruenceTolerances& tolerances) const;
+
+private:
+  bool normalsAgree(int p, int q, const Eigen::Vector3d& base_p, const Eigen::Vector3d& base_q,
+                    const Eigen::Vector3d& base_np, const Eigen::Vector3d& base_nq, double tolerance_rad) const;
+
+  const PointSet& target_;
+  const ShellPairIndex& index_;
+};
+}  // namespace registration
+}  // namespace brick_pose

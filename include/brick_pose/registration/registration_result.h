@@ -1,0 +1,29 @@
+#pragma once
+// The outcome of one global registration, shared by Super4PCS and the PCL
+// baselines so that the benchmark and the tools treat them alike.
+
+#include <string>
+
+#include <Eigen/Geometry>
+
+namespace brick_pose
+{
+namespace registration
+{
+struct RegistrationResult
+{
+  /// Maps source points onto the target: p_target = source_to_target * p_source.
+  Eigen::Isometry3d source_to_target = Eigen::Isometry3d::Identity();
+  /// Largest-common-pointset score: fraction (0..1) of sampled source points
+  /// whose nearest target point lies within the accuracy delta.
+  double lcp_score = 0.0;
+  int bases_tried = 0;
+  int candidates_verified = 0;
+  double elapsed_s = 0.0;
+  bool success = false;
+  /// Why the search stopped ("good enough LCP reached", "time budget
+  /// exhausted", ...) or why it failed.
+  std::string reason;
+};
+}  // namespace registration
+}  // namespace brick_pose

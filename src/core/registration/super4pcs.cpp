@@ -1,0 +1,294 @@
+#include "brick_pose/registration/super4pcs.h"
+
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <sstream>
+
+#include "brick_pose/common/errors.h"
+#include "brick_pose/registration/congruent_set_finder.h"
+#include "brick_pose/registration/coplanar_base.h"
+#include "brick_pose/registration/input_validation.h"
+#include "brick_pose/registration/lcp_scorer.h"
+#include "brick_pose/registration/normal_estimation.h"
+#include "brick_pose/registration/point_grid.h"
+#include "brick_pose/registration/rigid_fit.h"
+#include "brick_pose/registration/shell_pair_index.h"
+#include "brick_pose/registration/symmetric_icp.h"
+#include "brick_pose/registration/uniform_sampling.h"
+
+namespace brick_pose
+{
+namespace registration
+{
+namespace
+{
+constexpr double kDegToRad = M_PI / 180.0;
+// Consecutive failed base draws after which the source is declared unusable
+// (e.g. nearly collinear within the tolerances).
+constexpr int kMaxBaseDrawFailures = 8;
+// LCP radius over the target's median point spacing: a spot on a regularly
+// sampled surface is within 0.71 spacings of a point; the rest is for noise.
+constexpr double kLcpRadiusPerSpacing = 1.3;
+// Neighbourhood radius over the sample spacing for normal estimation.
+constexpr double kNormalRadiusPerSpacing = 2.5;
+// Candidates verified between two looks at the clock.
+constexpr int kClockStride = 32;
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void requireInRange(double value, double min, double max, const char* name)
+{
+  if (!(value >= min && value <= max))
+  {
+    std::ostringstream message;
+    message << "Super4PCSParams." << name << " must be in [" << min << ", " << max << "], got " << value;
+    throw ConfigError(message.str());
+  }
+}
+
+std::string formatScore(double value)
+{
+  std::ostringstream text;
+  text.precision(3);
+  text << value;
+  return text.str();
+}
+
+/// The tolerances that follow from the parameters and the sample density.
+struct SearchScales
+{
+  double target_sample_spacing_m = 0.0;
+  double pair_tolerance_m = 0.0;
+  double lcp_radius_m = 0.0;
+  double source_diameter_m = 0.0;
+};
+
+/// With normals, a candidate must also turn each base normal onto the normal
+/// of its target point: the pair filters only compare normals with each other,
+/// which cannot tell a flat face from the same face seen from behind.
+bool normalsMapped(const Eigen::Isometry3d& transform, const CoplanarBase& base, const PointSet& target,
+                   const CongruentSet& set, double max_angle_rad)
+{
+  const double min_cos = std::cos(max_angle_rad);
+  for (int k = 0; k < 4; ++k)
+    if ((transform.linear() * base.normals[k]).dot(target.normals[set[k]].normalized()) < min_cos)
+      return false;
+  return true;
+}
+}  // namespace
+
+void Super4PCSParams::validate() const
+{
+  if (!(overlap > 0.0 && overlap <= 1.0))
+    throw ConfigError("Super4PCSParams.overlap must be in (0, 1], got " + std::to_string(overlap));
+  if (!(delta_m > 0.0 && std::isfinite(delta_m)))
+    throw ConfigError("Super4PCSParams.delta_m must be positive, got " + std::to_string(delta_m));
+  if (sample_size < 4)
+    throw ConfigError("Super4PCSParams.sample_size must be at least 4, got " + std::to_string(sample_size));
+  if (lcp_sample_size < 1)
+    throw ConfigError("Super4PCSParams.lcp_sample_size must be at least 1, got " + std::to_string(lcp_sample_size));
+  requireInRange(max_normal_difference_deg, 0.0, 180.0, "max_normal_difference_deg");
+  requireInRange(max_angle_difference_deg, 0.0, 180.0, "max_angle_difference_deg");
+  if (!(max_time_s > 0.0) || std::isnan(max_time_s))
+    throw ConfigError("Super4PCSParams.max_time_s must be positive, got " + std::to_string(max_time_s));
+  if (max_bases < 1)
+    throw ConfigError("Super4PCSParams.max_bases must be at least 1, got " + std::to_string(max_bases));
+  requireInRange(good_enough_ratio, 0.0, 1.0, "good_enough_ratio");
+  requireInRange(min_success_ratio, 0.0, 1.0, "min_success_ratio");
+  if (!(max_fit_rms_factor > 0.0))
+    throw ConfigError("Super4PCSParams.max_fit_rms_factor must be positive, got " +
+                      std::to_string(max_fit_rms_factor));
+  if (refine_sample_size < 3)
+    throw ConfigError("Super4PCSParams.refine_sample_size must be at least 3, got " +
+                      std::to_string(refine_sample_size));
+  if (refine_iterations < 0)
+    throw ConfigError("Super4PCSParams.refine_iterations must be >= 0, got " + std::to_string(refine_iterations));
+}
+
+Super4PCS::Super4PCS(const Super4PCSParams& params) : params_(params)
+{
+  params_.validate();
+}
+
+RegistrationResult Super4PCS::align(const PointSet& source, const PointSet& target) const
+{
+  const Clock::time_point start = Clock::now();
+  validateRegistrationInput(source, "source");
+  validateRegistrationInput(target, "target");
+
+  std::mt19937_64 rng(params_.seed);
+  const bool use_normals = source.hasNormals() && target.hasNormals();
+  PointSet source_sample = source.subset(uniformSubsample(source.points, params_.sample_size, rng));
+  PointSet target_sample = target.subset(uniformSubsample(target.points, params_.sample_size, rng));
+  if (!use_normals)
+  {
+    source_sample.normals.clear();
+    target_sample.normals.clear();
+  }
+  const std::vector<Eigen::Vector3d> lcp_sample =
+      source.subset(uniformSubsample(source.points, params_.lcp_sample_size, rng)).points;
+
+  SearchScales scales;
+  // A base point's counterpart in the target sample is up to about half the
+  // sample spacing away, so tolerances finer than that would miss true sets.
+  scales.target_sample_spacing_m = neighbourSpacing(target_sample.points, 0.5, rng);
+  scales.pair_tolerance_m = std::max(params_.delta_m, 0.5 * scales.target_sample_spacing_m);
+  // The LCP radius must let almost every source point that lies on the
+  // target's surface find a target point, or the score of the right pose
+  // depends on sampling luck (and maximising it favours poses that happen to
+  // interlock the two samplings).
+  // A multiple of the median rather than a high quantile: outliers have far
+  // neighbours and would inflate a quantile.
+  scales.lcp_radius_m = std::max(params_.delta_m, kLcpRadiusPerSpacing * neighbourSpacing(target.points, 0.5, rng));
+  scales.source_diameter_m = approximateDiameter(source_sample.points, rng);
+
+  const ShellPairIndex pair_index(target_sample.points, scales.pair_tolerance_m);
+  const CongruentSetFinder finder(target_sample, pair_index);
+  const LcpScorer scorer(lcp_sample, target.points, scales.lcp_radius_m);
+
+  BaseSelectionLimits limits;
+  limits.max_diameter_m = params_.overlap * scales.source_diameter_m;
+  limits.coplanar_tolerance_m = 0.5 * scales.pair_tolerance_m;
+  const double stop_score = params_.good_enough_ratio * params_.overlap;
+  const double max_fit_rms_m = params_.max_fit_rms_factor * scales.pair_tolerance_m;
+
+  RegistrationResult result;
+  double best_score = -1.0;
+  Eigen::Isometry3d best_transform = Eigen::Isometry3d::Identity();
+  std::string stop_reason;
+  int base_draw_failures = 0;
+  std::vector<Eigen::Vector3d> base_points(4);
+  std::vector<Eigen::Vector3d> set_points(4);
+
+  while (stop_reason.empty())
+  {
+    if (result.bases_tried >= params_.max_bases)
+    {
+      stop_reason = "all " + std::to_string(params_.max_bases) + " bases tried";
+      break;
+    }
+    if (secondsSince(start) >= params_.max_time_s)
+    {
+      stop_reason = "time budget exhausted";
+      break;
+    }
+    const std::optional<CoplanarBase> base = drawCoplanarBase(source_sample, limits, rng);
+    if (!base)
+    {
+      if (++base_draw_failures >= kMaxBaseDrawFailures)
+        stop_reason = "no wide coplanar 4-point base found in the source";
+      continue;
+    }
+    base_draw_failures = 0;
+    ++result.bases_tried;
+
+    CongruenceTolerances tolerances;
+    tolerances.distance_m = scales.pair_tolerance_m;
+    tolerances.normal_rad = params_.max_normal_difference_deg * kDegToRad;
+    tolerances.angle_rad = params_.max_angle_difference_deg > 0.0
+                               ? params_.max_angle_difference_deg * kDegToRad
+                               : std::atan(2.0 * scales.pair_tolerance_m / std::min(base->r1_m(), base->r2_m()));
+    for (int k = 0; k < 4; ++k)
+      base_points[k] = base->points[k];
+
+    int since_clock = 0;
+    finder.find(*base, tolerances, [&](const CongruentSet& set) {
+      if (++since_clock >= kClockStride)
+      {
+        since_clock = 0;
+        if (secondsSince(start) >= params_.max_time_s)
+        {
+          stop_reason = "time budget exhausted";
+          return false;
+        }
+      }
+      for (int k = 0; k < 4; ++k)
+        set_points[k] = target_sample.points[set[k]];
+      const RigidFit fit = fitRigid(base_points, set_points);
+      if (!fit.valid || fit.rms_m > max_fit_rms_m)
+        return true;
+      if (use_normals && !normalsMapped(fit.transform, *base, target_sample, set, tolerances.normal_rad))
+        return true;
+      ++result.candidates_verified;
+      const double score = scorer.score(fit.transform, best_score);
+      if (score > best_score)
+      {
+        best_score = score;
+        best_transform = fit.transform;
+      }
+      if (best_score >= stop_score)
+      {
+        stop_reason = "good-enough LCP reached";
+        return false;
+      }
+      return true;
+    });
+  }
+
+  result.reason = stop_reason;
+  if (best_score < 0.0)
+  {
+    result.success = false;
+    result.reason += "; no congruent 4-point set found";
+    result.elapsed_s = secondsSince(start);
+    return result;
+  }
+  if (params_.refine_iterations > 0)
+  {
+    // Denser evenly spread samples than for the search: ICP on a face is
+    // limited by how finely the samples resolve its boundary.
+    PointSet refine_source = source.subset(uniformSubsample(source.points, params_.refine_sample_size, rng));
+    const std::vector<Eigen::Vector3d> refine_target =
+        target.subset(uniformSubsample(target.points, params_.refine_sample_size, rng)).points;
+    SymmetricIcpOptions icp;
+    // Start wide enough to reach from a 4-point pose that is off by the pair
+    // tolerance at the base's ends or by several degrees in the plane of a
+    // face (which the LCP hardly sees), finish at the LCP's resolution.
+    const double refine_spacing_m = neighbourSpacing(refine_target, 0.5, rng);
+    icp.final_radius_m = std::max(1.5 * scales.lcp_radius_m, 1.5 * refine_spacing_m);
+    icp.radius_m = std::max({3.0 * scales.pair_tolerance_m, 0.08 * scales.source_diameter_m, icp.final_radius_m});
+    icp.in_surface_tolerance_m = std::max(params_.delta_m, refine_spacing_m);
+    icp.max_iterations = params_.refine_iterations;
+    if (!refine_source.hasNormals())
+      refine_source.normals = estimateNormals(
+          refine_source.points, kNormalRadiusPerSpacing * neighbourSpacing(refine_source.points, 0.5, rng));
+    const Eigen::Isometry3d refined =
+        refineSymmetricIcp(refine_source.points, refine_source.normals, refine_target, best_transform, icp);
+    const double refined_score = scorer.score(refined);
+    // ICP cannot be trusted to raise the LCP on flat faces (it slides), but a
+    // clear drop means it was pulled by clutter: then keep the 4-point pose.
+    if (refined_score >= best_score - 0.02)
+    {
+      best_transform = refined;
+      best_score = refined_score;
+    }
+  }
+  result.source_to_target = best_transform;
+  result.lcp_score = best_score;
+  const double accept_score = params_.min_success_ratio * params_.overlap;
+  result.success = best_score >= accept_score;
+  if (!result.success)
+    result.reason += "; best LCP " + formatScore(best_score) + " below the acceptance " + formatScore(accept_score);
+  result.elapsed_s = secondsSince(start);
+  return result;
+}
+
+RegistrationResult alignSuper4PCS(const pcl::PointCloud<pcl::PointXYZ>& source,
+                                  const pcl::PointCloud<pcl::PointXYZ>& target, const Super4PCSParams& params)
+{
+  return Super4PCS(params).align(fromPcl(source), fromPcl(target));
+}
+
+RegistrationResult alignSuper4PCS(const pcl::PointCloud<pcl::PointNormal>& source,
+                                  const pcl::PointCloud<pcl::PointNormal>& target, const Super4PCSParams& params)
+{
+  return Super4PCS(params).align(fromPcl(source), fromPcl(target));
+}
+}  // namespace registration
+}  // namespace brick_pose

@@ -1,0 +1,245 @@
+#include "brick_pose/registration/symmetric_icp.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <utility>
+
+#include <Eigen/Cholesky>
+
+#include "brick_pose/registration/point_grid.h"
+#include "brick_pose/registration/rigid_fit.h"
+
+namespace brick_pose
+{
+namespace registration
+{
+namespace
+{
+/// A step as translation and rotation vector scaled by the cloud's size, so
+/// that both parts are lengths and can be compared.
+using Twist = Eigen::Matrix<double, 6, 1>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+/// (source index, target index) pairs.
+using Correspondences = std::vector<std::pair<int, int>>;
+
+double rmsRadius(const std::vector<Eigen::Vector3d>& points)
+{
+  if (points.empty())
+    return 0.0;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points)
+    mean += p;
+  mean /= static_cast<double>(points.size());
+  double sum_sq = 0.0;
+  for (const Eigen::Vector3d& p : points)
+    sum_sq += (p - mean).squaredNorm();
+  return std::sqrt(sum_sq / static_cast<double>(points.size()));
+}
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v)
+{
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
+// Sliding along a flat face converges geometrically and slowly: the interior
+// correspondences, which dominate, pull towards the current pose and only the
+// boundary pulls towards the solution. When two steps point the same way and
+// shrink by a ratio rho, the remaining distance is rho / (1 - rho) steps
+// (Besl & McKay's accelerated ICP uses the same observation).
+double extrapolationFactor(const Twist& previous, const Twist& current, const SymmetricIcpOptions& options)
+{
+  const double previous_norm = previous.norm();
+  const double current_norm = current.norm();
+  if (previous_norm <= 0.0 || current_norm <= 0.0)
+    return 0.0;
+  if (previous.dot(current) < options.min_extrapolation_cos * previous_norm * current_norm)
+    return 0.0;
+  const double rho = current_norm / previous_norm;
+  if (rho >= 1.0)
+    return 0.0;
+  return std::min(rho / (1.0 - rho), options.max_extrapolation);
+}
+
+Eigen::Isometry3d scaledStep(const Eigen::Isometry3d& step, double factor)
+{
+  const Eigen::AngleAxisd rotation(step.linear());
+  Eigen::Isometry3d scaled = Eigen::Isometry3d::Identity();
+  scaled.linear() = Eigen::AngleAxisd(rotation.angle() * factor, rotation.axis()).toRotationMatrix();
+  scaled.translation() = step.translation() * factor;
+  return scaled;
+}
+
+/// Nearest neighbours both ways within radius_m.
+Correspondences matchBothWays(const std::vector<Eigen::Vector3d>& moved_source,
+                              const std::vector<Eigen::Vector3d>& target, const PointGrid& target_grid,
+                              double radius_m)
+{
+  Correspondences pairs;
+  for (std::size_t i = 0; i < moved_source.size(); ++i)
+  {
+    const int nearest = target_grid.nearestWithin(moved_source[i], radius_m);
+    if (nearest >= 0)
+      pairs.emplace_back(static_cast<int>(i), nearest);
+  }
+  const PointGrid source_grid(moved_source, radius_m);
+  for (std::size_t j = 0; j < target.size(); ++j)
+  {
+    const int nearest = source_grid.nearestWithin(target[j], radius_m);
+    if (nearest >= 0)
+      pairs.emplace_back(nearest, static_cast<int>(j));
+  }
+  return pairs;
+}
+
+/// Step (applied on the left of the current pose) of closed-form point-to-point.
+std::optional<Eigen::Isometry3d> pointToPointStep(const std::vector<Eigen::Vector3d>& moved_source,
+                                                  const std::vector<Eigen::Vector3d>& target,
+                                                  const Correspondences& pairs)
+{
+  std::vector<Eigen::Vector3d> from;
+  std::vector<Eigen::Vector3d> to;
+  from.reserve(pairs.size());
+  to.reserve(pairs.size());
+  for (const auto& [i, j] : pairs)
+  {
+    from.push_back(moved_source[i]);
+    to.push_back(target[j]);
+  }
+  const RigidFit fit = fitRigid(from, to);
+  if (!fit.valid)
+    return std::nullopt;
+  return fit.transform;
+}
+
+/// One Gauss-Newton step of the hybrid point-to-plane / point-to-point cost,
+/// linearised about the centroid of the moved source for conditioning.
+std::optional<Eigen::Isometry3d> hybridStep(const std::vector<Eigen::Vector3d>& moved_source,
+                                            const std::vector<Eigen::Vector3d>& moved_normals,
+                                            const std::vector<Eigen::Vector3d>& target, const Correspondences& pairs,
+                                            double in_surface_tolerance_m)
+{
+  if (pairs.size() < 3)
+    return std::nullopt;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const auto& [i, j] : pairs)
+    centre += moved_source[i];
+  centre /= static_cast<double>(pairs.size());
+
+  // Unknowns x = (dt, dw): a point p moves by dt + dw x (p - centre).
+  Matrix6d normal_matrix = Matrix6d::Zero();
+  Twist rhs = Twist::Zero();
+  for (const auto& [i, j] : pairs)
+  {
+    const Eigen::Vector3d p = moved_source[i] - centre;
+    const Eigen::Vector3d& n = moved_normals[i];
+    const Eigen::Vector3d offset = target[j] - moved_source[i];
+    const double along_normal = n.dot(offset);
+    const bool has_normal = n.squaredNorm() > 0.5;  // estimated normals may be zero
+    if (has_normal && (offset - along_normal * n).norm() <= in_surface_tolerance_m)
+    {
+      Twist row;
+      row << n, p.cross(n);
+      normal_matrix += row * row.transpose();
+      rhs += row * along_normal;
+    }
+    else
+    {
+      Eigen::Matrix<double, 3, 6> jacobian;
+      jacobian << Eigen::Matrix3d::Identity(), -skew(p);
+      normal_matrix += jacobian.transpose() * jacobian;
+      rhs += jacobian.transpose() * offset;
+    }
+  }
+  // A face with no overhanging edge leaves the in-plane motion free: the small
+  // damping keeps it still instead of letting round-off move it.
+  normal_matrix.diagonal().array() += 1e-9 * (normal_matrix.trace() + 1.0);
+  const Twist x = normal_matrix.ldlt().solve(rhs);
+  if (!x.allFinite())
+    return std::nullopt;
+
+  const Eigen::Vector3d dw = x.tail<3>();
+  const double angle = dw.norm();
+  const Eigen::Matrix3d rotation =
+      angle > 0.0 ? Eigen::AngleAxisd(angle, dw / angle).toRotationMatrix() : Eigen::Matrix3d::Identity();
+  Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+  step.linear() = rotation;
+  step.translation() = centre + x.head<3>() - rotation * centre;
+  return step;
+}
+}  // namespace
+
+Eigen::Isometry3d refineSymmetricIcp(const std::vector<Eigen::Vector3d>& source,
+                                     const std::vector<Eigen::Vector3d>& source_normals,
+                                     const std::vector<Eigen::Vector3d>& target, const Eigen::Isometry3d& start,
+                                     const SymmetricIcpOptions& options)
+{
+  const bool hybrid = !source_normals.empty() && source_normals.size() == source.size();
+  const double start_radius_m = std::max(options.radius_m, options.final_radius_m);
+  const double final_radius_m = std::min(options.radius_m, options.final_radius_m);
+  const double shrink = options.max_iterations > 1
+                            ? std::pow(final_radius_m / start_radius_m, 1.0 / (options.max_iterations - 1))
+                            : 1.0;
+  const double length_scale_m = rmsRadius(source);
+  PointGrid target_grid(target, start_radius_m);
+  double radius_m = start_radius_m;
+  Eigen::Isometry3d current = start;
+  Twist previous_twist = Twist::Zero();
+  bool have_previous = false;
+  std::vector<Eigen::Vector3d> moved_source(source.size());
+  std::vector<Eigen::Vector3d> moved_normals(hybrid ? source.size() : 0);
+
+  for (int iteration = 0; iteration < options.max_iterations; ++iteration)
+  {
+    // Coarse cells make narrow queries scan many points: rebuild as it shrinks.
+    if (radius_m < 0.7 * target_grid.maxRadius())
+      target_grid = PointGrid(target, radius_m);
+    for (std::size_t i = 0; i < source.size(); ++i)
+    {
+      moved_source[i] = current * source[i];
+      if (hybrid)
+        moved_normals[i] = current.linear() * source_normals[i];
+    }
+    const Correspondences pairs = matchBothWays(moved_source, target, target_grid, radius_m);
+    const bool hybrid_now = hybrid && iteration < options.max_iterations - options.point_to_point_iterations;
+    if (hybrid && !hybrid_now && have_previous && iteration == options.max_iterations - options.point_to_point_iterations)
+      have_previous = false;  // the step changes nature: no extrapolation across
+    const std::optional<Eigen::Isometry3d> step =
+        hybrid_now ? hybridStep(moved_source, moved_normals, target, pairs, options.in_surface_tolerance_m)
+               : pointToPointStep(moved_source, target, pairs);
+    if (!step)
+      break;
+    current = *step * current;
+    radius_m = std::max(final_radius_m, radius_m * shrink);
+
+    const Eigen::AngleAxisd step_rotation(step->linear());
+    if (step->translation().norm() < options.min_step_m && step_rotation.angle() < options.min_step_rad)
+    {
+      if (!hybrid_now)
+        break;
+      // Converged in the hybrid phase: go on with the point-to-point phase.
+      iteration = std::max(iteration, options.max_iterations - options.point_to_point_iterations - 1);
+      have_previous = false;
+      continue;
+    }
+    Twist twist;
+    twist << step->translation(), step_rotation.axis() * step_rotation.angle() * length_scale_m;
+    const double factor = have_previous ? extrapolationFactor(previous_twist, twist, options) : 0.0;
+    if (factor > 0.0)
+    {
+      current = scaledStep(*step, factor) * current;
+      have_previous = false;  // measure the rate afresh after a jump
+    }
+    else
+    {
+      previous_twist = twist;
+      have_previous = true;
+    }
+  }
+  return current;
+}
+}  // namespace registration
+}  // namespace brick_pose
