@@ -151,6 +151,10 @@ void evaluate(const FrontEndResult& result, const sim::SyntheticFrame& frame, co
     else if (taken[instance]) failure = "duplicate of an instance";
     if (!failure.empty())
     {
+      if (std::getenv("BENCH_VERBOSE"))
+        std::fprintf(stderr, "false positive %s %.3f x %.3f m, %d px, complete %d, fill %.2f: %s\n",
+                     candidate.type_name.c_str(), candidate.length_m, candidate.width_m, candidate.area_px,
+                     candidate.complete ? 1 : 0, candidate.fill_ratio, failure.c_str());
       ++stats.false_positive_reasons[failure];
       continue;
     }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <opencv2/core.hpp>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
@@ -28,6 +29,9 @@ struct BrickCandidate
   /// Image pixels of the segment that have depth (v * width + u).
   std::vector<int> pixel_indices;
   int area_px = 0;  ///< Mask pixels, with or without depth.
+  /// The segment's pixel footprint (CV_8UC1, 255 inside) over `bounding_box_px`.
+  cv::Mat mask;
+  cv::Rect bounding_box_px;
 
   OrientedBoundingBox obb;  ///< PCA box of `points`.
   PlaneFit plane;           ///< Least-squares plane of `points`, normal toward the camera.
@@ -51,7 +55,9 @@ struct BrickCandidate
 
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< Unit, toward the camera.
   double length_m = 0.0;  ///< Mean of the two long quad edges in 3D.
-  double width_m = 0.0;   ///< Mean of the two short quad edges in 3D.
+  /// Distance between the two long quad edges in 3D (the short edges'
+  /// length for a whole face; still the width when the face is cut slantwise).
+  double width_m = 0.0;
   /// Area inside the segment's outline over the quad's area (1 for a whole,
   /// unoccluded face; lower for notched or irregular segments).
   double fill_ratio = 0.0;

@@ -40,6 +40,14 @@ struct FrontEndParams
   /// so the voxel grid, SOR and MLS are optional extras.
   CloudProcessorParams cloud = defaultSegmentCloudParams();
   RoiFilterParams roi;
+  /// An occluder lying across a plate splits it into pieces. Incomplete
+  /// candidates of one type on one plane (normals within merge_max_angle_deg,
+  /// each centroid within merge_max_offset_m of the other's plane) are
+  /// joined when the joined segment still passes ROI filtration (so two
+  /// different plates side by side are not).
+  bool merge_face_pieces = true;
+  double merge_max_angle_deg = 5.0;
+  double merge_max_offset_m = 0.02;
 
   static CloudProcessorParams defaultSegmentCloudParams();
 };
@@ -88,6 +96,9 @@ public:
   const FrontEndParams& params() const { return params_; }
 
 private:
+  /// Joins pieces of one face (see FrontEndParams::merge_face_pieces).
+  void mergeFacePieces(const RgbdFrame& frame, FrontEndResult& result) const;
+
   BrickCatalogue catalogue_;
   FrontEndParams params_;
   HsvSegmenter hsv_segmenter_;

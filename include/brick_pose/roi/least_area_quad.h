@@ -49,6 +49,15 @@ std::optional<QuadCorners> reduceToLeastAreaQuad(const std::vector<Eigen::Vector
 std::optional<QuadCorners> fitLeastAreaQuad(const std::vector<cv::Point>& outline,
                                             const QuadFitParams& params = QuadFitParams());
 
+/// The same for a face seen in several pieces (an occluder across it): the
+/// quad encloses all outlines and each side is refined on the points of all.
+std::optional<QuadCorners> fitLeastAreaQuad(const std::vector<std::vector<cv::Point>>& outlines,
+                                            const QuadFitParams& params = QuadFitParams());
+
+/// Outlines of every blob of a binary mask (external contours), in image
+/// pixels of the full frame.
+std::vector<std::vector<cv::Point>> allOutlines(const cv::Mat& mask, const cv::Point& offset_px = cv::Point());
+
 /// Outline of the largest blob of a binary mask, in image pixels of the full
 /// frame (`offset_px` = position of the mask's top-left pixel in the image).
 std::vector<cv::Point> largestOutline(const cv::Mat& mask, const cv::Point& offset_px = cv::Point());

@@ -19,8 +19,9 @@ namespace brick_pose
 int sideBySideCount(double across_m, double width_m);
 
 /// The parts of `segment` (measured as `measured`: plane, ordered 3D corners)
-/// when one side of its quad is `type`'s length within `tolerance_m` and the
-/// other holds n >= 2 widths; empty otherwise. Cuts run parallel to the
+/// when one side of its quad is at most `type`'s length (+ `tolerance_m`;
+/// shorter when clipped or occluded) and the other holds n >= 2 widths;
+/// empty otherwise. Cuts run parallel to the
 /// length, evenly spaced on the plane, or through the apex of a convexity
 /// defect deeper than 4 px (the visible end of a gap) close to that spacing.
 std::vector<Segment> splitSideBySide(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,

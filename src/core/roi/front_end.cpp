@@ -1,6 +1,8 @@
 #include "brick_pose/roi/front_end.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "brick_pose/common/errors.h"
 
@@ -13,6 +15,29 @@ using Clock = std::chrono::steady_clock;
 double millisecondsSince(Clock::time_point start)
 {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// One segment made of the footprints of two candidates.
+Segment joinSegments(const BrickCandidate& a, const BrickCandidate& b)
+{
+  Segment joined;
+  joined.type_name = a.type_name;
+  joined.bounding_box_px = a.bounding_box_px | b.bounding_box_px;
+  joined.mask = cv::Mat::zeros(joined.bounding_box_px.size(), CV_8UC1);
+  for (const BrickCandidate* piece : {&a, &b})
+  {
+    cv::Mat target = joined.mask(piece->bounding_box_px - joined.bounding_box_px.tl());
+    cv::bitwise_or(target, piece->mask, target);
+  }
+  joined.area_px = cv::countNonZero(joined.mask);
+  joined.pixel_indices = a.pixel_indices;
+  joined.pixel_indices.insert(joined.pixel_indices.end(), b.pixel_indices.begin(), b.pixel_indices.end());
+  std::sort(joined.pixel_indices.begin(), joined.pixel_indices.end());
+  joined.pixel_indices.erase(std::unique(joined.pixel_indices.begin(), joined.pixel_indices.end()),
+                             joined.pixel_indices.end());
+  return joined;
 }
 
 const BrickCatalogue& nonEmpty(const BrickCatalogue& catalogue)
@@ -71,7 +96,34 @@ void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>
     for (std::string& reason : outcome.rejections)
       result.rejections.push_back({segment.type_name, segment.bounding_box_px, segment.area_px, std::move(reason)});
   }
+  if (params_.merge_face_pieces) mergeFacePieces(frame, result);
   result.timings.roi_ms = millisecondsSince(roi_start) - (result.timings.cloud.total() - cloud_ms_before);
+}
+
+void FrontEnd::mergeFacePieces(const RgbdFrame& frame, FrontEndResult& result) const
+{
+  const double min_cos = std::cos(params_.merge_max_angle_deg * kPi / 180.0);
+  auto samePlane = [&](const BrickCandidate& a, const BrickCandidate& b) {
+    return a.type_name == b.type_name && !a.complete && !b.complete && a.normal.dot(b.normal) >= min_cos &&
+           std::abs(a.plane.signedDistance(b.centroid_m)) <= params_.merge_max_offset_m &&
+           std::abs(b.plane.signedDistance(a.centroid_m)) <= params_.merge_max_offset_m;
+  };
+  std::vector<BrickCandidate>& candidates = result.candidates;
+  for (bool merged = true; merged;)
+  {
+    merged = false;
+    for (std::size_t i = 0; i < candidates.size() && !merged; ++i)
+      for (std::size_t j = i + 1; j < candidates.size() && !merged; ++j)
+      {
+        if (!samePlane(candidates[i], candidates[j])) continue;
+        RoiResult joined = roi_filter_.filter(frame, joinSegments(candidates[i], candidates[j]), &result.timings.cloud);
+        auto* candidate = std::get_if<BrickCandidate>(&joined);
+        if (!candidate) continue;
+        candidates[i] = std::move(*candidate);
+        candidates.erase(candidates.begin() + static_cast<std::ptrdiff_t>(j));
+        merged = true;
+      }
+  }
 }
 
 FrontEndResult FrontEnd::process(const RgbdFrame& frame) const

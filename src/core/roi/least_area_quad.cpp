@@ -202,9 +202,24 @@ std::optional<QuadCorners> reduceToLeastAreaQuad(const std::vector<Eigen::Vector
 
 std::optional<QuadCorners> fitLeastAreaQuad(const std::vector<cv::Point>& outline, const QuadFitParams& params)
 {
-  if (outline.size() < 4) return std::nullopt;
+  return fitLeastAreaQuad(std::vector<std::vector<cv::Point>>{outline}, params);
+}
+
+std::optional<QuadCorners> fitLeastAreaQuad(const std::vector<std::vector<cv::Point>>& outlines,
+                                            const QuadFitParams& params)
+{
+  std::vector<cv::Point> points;
+  std::vector<bool> excluded;
+  for (const auto& outline : outlines)
+  {
+    if (outline.empty()) continue;
+    const std::vector<bool> in_defects = pointsInDeepDefects(outline, params.defect_depth_px);
+    points.insert(points.end(), outline.begin(), outline.end());
+    excluded.insert(excluded.end(), in_defects.begin(), in_defects.end());
+  }
+  if (points.size() < 4) return std::nullopt;
   std::vector<cv::Point> hull_points;
-  cv::convexHull(outline, hull_points);
+  cv::convexHull(points, hull_points);
   std::vector<Eigen::Vector2d> hull;
   hull.reserve(hull_points.size());
   for (const cv::Point& p : hull_points) hull.emplace_back(p.x, p.y);
@@ -212,13 +227,12 @@ std::optional<QuadCorners> fitLeastAreaQuad(const std::vector<cv::Point>& outlin
   if (!coarse) return std::nullopt;
   if (signedAreaPx(*coarse) < 0.0) std::reverse(coarse->begin(), coarse->end());
 
-  const std::vector<bool> excluded = pointsInDeepDefects(outline, params.defect_depth_px);
   Eigen::Vector2d inside = Eigen::Vector2d::Zero();
   for (const auto& corner : *coarse) inside += 0.25 * corner;
 
   std::array<Line2, 4> sides;
   for (int k = 0; k < 4; ++k)
-    refineSide(outline, excluded, (*coarse)[k], (*coarse)[(k + 1) % 4], inside, params, sides[k]);
+    refineSide(points, excluded, (*coarse)[k], (*coarse)[(k + 1) % 4], inside, params, sides[k]);
 
   QuadCorners refined;
   for (int k = 0; k < 4; ++k)
@@ -230,6 +244,14 @@ std::optional<QuadCorners> fitLeastAreaQuad(const std::vector<cv::Point>& outlin
   }
   if (signedAreaPx(refined) <= 0.0) return coarse;
   return refined;
+}
+
+std::vector<std::vector<cv::Point>> allOutlines(const cv::Mat& mask, const cv::Point& offset_px)
+{
+  std::vector<std::vector<cv::Point>> outlines;
+  cv::Mat copy = mask.clone();  // findContours of OpenCV < 3.2 modified its input
+  cv::findContours(copy, outlines, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE, offset_px);
+  return outlines;
 }
 
 std::vector<cv::Point> largestOutline(const cv::Mat& mask, const cv::Point& offset_px)

@@ -83,12 +83,18 @@ std::vector<Segment> splitSideBySide(const RgbdFrame& frame, const Segment& segm
   AcrossCoordinate coordinate;
   coordinate.origin = c[0];
   double across_m = 0.0;
-  if (std::abs(measured.length_m - type.length_m) <= tolerance_m && measured.width_m > type.width_m + tolerance_m)
+  // The side along the bricks may be shorter than their length (image
+  // border, occluders) but not longer, and must be longer than a width (or
+  // the face would be one brick seen lengthwise).
+  const double max_length_m = type.length_m + tolerance_m;
+  const double min_length_m = type.width_m + tolerance_m;
+  auto alongBricks = [&](double side_m) { return side_m > min_length_m && side_m <= max_length_m; };
+  if (alongBricks(measured.length_m) && measured.width_m > type.width_m + tolerance_m)
   {
     coordinate.across = c[3] - c[0];
     across_m = measured.width_m;
   }
-  else if (std::abs(measured.width_m - type.length_m) <= tolerance_m && measured.length_m > type.width_m + tolerance_m)
+  else if (alongBricks(measured.width_m) && measured.length_m > type.width_m + tolerance_m)
   {
     coordinate.across = c[1] - c[0];
     across_m = measured.length_m;

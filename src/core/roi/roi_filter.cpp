@@ -45,6 +45,18 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr planeInliers(const pcl::PointCloud<pcl::Poin
   return inliers;
 }
 
+/// Mean distance between the long edges 0->1 and 3->2 (from the middle of
+/// each to the line of the other). Equal to the short edges of a rectangle,
+/// and still the plate's width when an occluder or the image border cuts the
+/// face slantwise and the quad's short sides follow that cut.
+double longEdgeSeparation(const std::array<Eigen::Vector3d, 4>& c)
+{
+  auto distanceToLine = [](const Eigen::Vector3d& point, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return (point - a).cross((b - a).normalized()).norm();
+  };
+  return 0.5 * (distanceToLine(0.5 * (c[0] + c[1]), c[3], c[2]) + distanceToLine(0.5 * (c[3] + c[2]), c[0], c[1]));
+}
+
 /// Every k-th index so that about `max_count` remain (all when max_count is 0).
 std::vector<int> thinned(const std::vector<int>& indices, int max_count)
 {
@@ -124,6 +136,8 @@ std::optional<std::string> RoiFilter::measure(const RgbdFrame& frame, const Segm
                     params_.min_points);
 
   candidate.pixel_indices = segment.pixel_indices;
+  candidate.mask = segment.mask;
+  candidate.bounding_box_px = segment.bounding_box_px;
   candidate.area_px = segment.area_px;
   const pcl::PointCloud<pcl::PointXYZ>::Ptr raw = backProjectPixels(frame, thinned(segment.pixel_indices, params_.max_points));
   ProcessedCloud processed = cloud_processor_.process(raw);
@@ -161,8 +175,10 @@ std::optional<std::string> RoiFilter::measure(const RgbdFrame& frame, const Segm
 std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const Segment& segment,
                                                  BrickCandidate& candidate) const
 {
-  const std::vector<cv::Point> outline = largestOutline(segment.mask, segment.bounding_box_px.tl());
-  const std::optional<QuadCorners> quad = fitLeastAreaQuad(outline, params_.quad);
+  // One blob for a segment from a single component; several for the pieces
+  // of a face merged across an occluder.
+  const std::vector<std::vector<cv::Point>> outlines = allOutlines(segment.mask, segment.bounding_box_px.tl());
+  const std::optional<QuadCorners> quad = fitLeastAreaQuad(outlines, params_.quad);
   if (!quad) return std::string("outline has no enclosing quadrilateral");
 
   const PinholeCamera& camera = frame.camera;
@@ -171,13 +187,15 @@ std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const S
     if (!candidate.plane.intersectRay(camera.ray((*quad)[k].x(), (*quad)[k].y()), corners_m[k]))
       return std::string("a quad corner's ray misses the segment plane");
 
-  candidate.fill_ratio = std::abs(cv::contourArea(outline)) / std::max(1e-9, std::abs(signedAreaPx(*quad)));
+  double outline_area_px = 0.0;
+  for (const auto& outline : outlines) outline_area_px += std::abs(cv::contourArea(outline));
+  candidate.fill_ratio = outline_area_px / std::max(1e-9, std::abs(signedAreaPx(*quad)));
   const int start = longEdgeStart(*quad, corners_m);
   candidate.corners_px = rotated(*quad, start);
   candidate.corners_m = rotated(corners_m, start);
   const auto& c = candidate.corners_m;
   candidate.length_m = 0.5 * ((c[1] - c[0]).norm() + (c[2] - c[3]).norm());
-  candidate.width_m = 0.5 * ((c[2] - c[1]).norm() + (c[3] - c[0]).norm());
+  candidate.width_m = longEdgeSeparation(c);
 
   // The diagonals' intersection is the perspective image of the face centre.
   candidate.centroid_px = diagonalIntersection(candidate.corners_px);

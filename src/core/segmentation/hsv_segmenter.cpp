@@ -99,7 +99,7 @@ void HsvSegmenter::cutAtDepthJumps(cv::Mat& mask, const cv::Mat& depth_m) const
   };
   // First valid depth from (y, x) stepping by (dy, dx), within a few pixels:
   // stereo shadows and flying-pixel dropouts leave short gaps at depth edges.
-  constexpr int kMaxGapPx = 4;
+  constexpr int kMaxGapPx = 16;  // the shadow of a 0.2 m step at 0.8 m is ~10 px wide
   auto firstValid = [&](int y, int x, int dy, int dx) {
     for (int step = 1; step <= kMaxGapPx; ++step)
     {
