@@ -39,4 +39,12 @@ std::optional<std::string> paramAsText(const ros::NodeHandle& node, const std::s
   if (!node.getParam(name, value)) return std::nullopt;
   return toText(value);
 }
+
+ParamLookup rosParamLookup(const ros::NodeHandle& private_node, const ros::NodeHandle& node)
+{
+  return [private_node, node](const std::string& name) {
+    auto value = paramAsText(private_node, name);
+    return value ? value : paramAsText(node, name);
+  };
+}
 }  // namespace brick_pose

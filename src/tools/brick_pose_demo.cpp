@@ -1,51 +1,119 @@
-// brick_pose_demo: the client side of `make demo`. Watches the synthetic D415
-// for a few seconds and prints what it publishes: topics, encodings, rates and
-// the ground truth of the scene.
+// brick_pose_demo: the client side of `make demo`. Waits for the pipeline's
+// detections on the synthetic D415, calls the get_brick_pose service for every
+// detected brick, and prints the estimated pose beside the ground truth with
+// the error (modulo the face's half-turn symmetry). Exits non-zero when the
+// pipeline produced nothing.
 
 #include <cstdio>
-#include <map>
-#include <mutex>
 #include <string>
 
 #include <ros/ros.h>
-#include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 
+#include "brick_pose/BrickDetectionArray.h"
 #include "brick_pose/BrickTruthArray.h"
+#include "brick_pose/GetBrickPose.h"
+#include "brick_pose/registration/brick_symmetry.h"
+#include "brick_pose/ros/conversions.h"
 
 namespace
 {
-class TopicWatch
+using brick_pose::ros_conversions::fromPose;
+
+struct Options
 {
-public:
-  TopicWatch(ros::NodeHandle& node, const std::string& topic) : topic_(topic)
-  {
-    subscriber_ = node.subscribe<sensor_msgs::Image>(topic, 5, [this](const sensor_msgs::ImageConstPtr& image) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (count_ == 0) first_ = ros::WallTime::now();
-      last_ = ros::WallTime::now();
-      ++count_;
-      description_ = std::to_string(image->width) + "x" + std::to_string(image->height) + " " + image->encoding +
-                     " frame " + image->header.frame_id;
-    });
-  }
-
-  void print()
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    const double span_s = (last_ - first_).toSec();
-    const double rate_hz = count_ > 1 && span_s > 0.0 ? (count_ - 1) / span_s : 0.0;
-    std::printf("  %-45s %5.1f Hz  %s\n", topic_.c_str(), rate_hz, description_.c_str());
-  }
-
-private:
-  std::string topic_;
-  ros::Subscriber subscriber_;
-  std::mutex mutex_;
-  int count_ = 0;
-  ros::WallTime first_, last_;
-  std::string description_ = "(nothing received)";
+  std::string service = "/brick_pose/get_brick_pose";
+  std::string detections = "/brick_pose/detections";
+  std::string truth = "/camera/synthetic_camera/ground_truth";
+  double timeout_s = 60.0;
 };
+
+/// The ground-truth brick of the same type nearest to `pose`, or nullptr.
+const brick_pose::BrickTruth* matchTruth(const brick_pose::BrickTruthArray& truth, const std::string& type,
+                                         const Eigen::Isometry3d& pose)
+{
+  const brick_pose::BrickTruth* best = nullptr;
+  double best_distance_m = 0.1;  // farther than 10 cm is another brick
+  for (const auto& brick : truth.bricks)
+  {
+    if (brick.type != type) continue;
+    const double distance_m = (fromPose(brick.pose).translation() - pose.translation()).norm();
+    if (distance_m < best_distance_m)
+    {
+      best_distance_m = distance_m;
+      best = &brick;
+    }
+  }
+  return best;
+}
+
+void printStreams(const brick_pose::BrickDetectionArray& detections)
+{
+  std::printf("\nThe synthetic D415 publishes /camera/color/image_raw (rgb8), /camera/aligned_depth_to_color/image_raw\n"
+              "(16UC1, mm) and their camera_info; the pipeline publishes /brick_pose/detections, /brick_pose/markers,\n"
+              "tf brick_<type>_<n> and serves %s.\n",
+              "/brick_pose/get_brick_pose");
+  std::printf("Last frame: front end %.1f ms, Super4PCS %.1f ms, refinement %.3f ms, latency %.1f ms\n",
+              detections.frontend_ms, detections.registration_ms, detections.refinement_ms, detections.latency_ms);
+}
+
+int run(ros::NodeHandle& node, const Options& options)
+{
+  const auto detections = ros::topic::waitForMessage<brick_pose::BrickDetectionArray>(
+      options.detections, node, ros::Duration(options.timeout_s));
+  const auto truth =
+      ros::topic::waitForMessage<brick_pose::BrickTruthArray>(options.truth, node, ros::Duration(options.timeout_s));
+  if (!detections || !truth)
+  {
+    std::fprintf(stderr, "brick_pose_demo: no %s within %.0f s\n", !detections ? "detections" : "ground truth",
+                 options.timeout_s);
+    return 1;
+  }
+  printStreams(*detections);
+  if (!ros::service::waitForService(options.service, ros::Duration(10.0)))
+  {
+    std::fprintf(stderr, "brick_pose_demo: service %s not available\n", options.service.c_str());
+    return 1;
+  }
+  std::printf("\n%-18s %-9s %24s %24s %9s %9s %8s\n", "brick (service)", "pickable", "estimate x y z [m]",
+              "truth x y z [m]", "rot [deg]", "pos [mm]", "fitness");
+  int answered = 0;
+  for (const auto& detection : detections->detections)
+  {
+    brick_pose::GetBrickPose call;
+    call.request.frame = detection.frame;
+    if (!ros::service::call(options.service, call) || !call.response.success)
+    {
+      std::printf("%-18s service failed: %s\n", detection.frame.c_str(), call.response.message.c_str());
+      continue;
+    }
+    ++answered;
+    const Eigen::Isometry3d estimate = fromPose(call.response.pose.pose);
+    const brick_pose::BrickTruth* match = matchTruth(*truth, call.response.type, estimate);
+    const Eigen::Vector3d& p = estimate.translation();
+    if (match == nullptr)
+    {
+      std::printf("%-18s %-9s %8.3f %7.3f %7.3f %24s\n", call.response.frame.c_str(), detection.pickable ? "yes" : "no",
+                  p.x(), p.y(), p.z(), "(no matching truth)");
+      continue;
+    }
+    const Eigen::Isometry3d truth_pose = fromPose(match->pose);
+    const auto error = brick_pose::registration::poseErrorModuloSymmetry(estimate, truth_pose);
+    const Eigen::Vector3d& t = truth_pose.translation();
+    std::printf("%-18s %-9s %8.3f %7.3f %7.3f %8.3f %7.3f %7.3f %9.2f %9.2f %8.2f\n", call.response.frame.c_str(),
+                detection.pickable ? "yes" : "no", p.x(), p.y(), p.z(), t.x(), t.y(), t.z(), error.rotation_deg,
+                error.translation_mm(), call.response.fitness);
+  }
+  for (const auto& brick : truth->bricks)
+    std::printf("  truth_%s_%d: %.0f%% of its top face visible\n", brick.type.c_str(), brick.instance_id,
+                100.0 * brick.visible_fraction);
+  brick_pose::GetBrickPose absent;
+  absent.request.type = "purple";
+  ros::service::call(options.service, absent);
+  std::printf("\nget_brick_pose(type: purple) -> success %s, \"%s\"\n", absent.response.success ? "true" : "false",
+              absent.response.message.c_str());
+  return answered > 0 ? 0 : 1;
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -54,28 +122,5 @@ int main(int argc, char** argv)
   ros::NodeHandle node;
   ros::AsyncSpinner spinner(2);
   spinner.start();
-
-  TopicWatch color(node, "/camera/color/image_raw");
-  TopicWatch depth(node, "/camera/aligned_depth_to_color/image_raw");
-  const auto truth = ros::topic::waitForMessage<brick_pose::BrickTruthArray>(
-      "/camera/synthetic_camera/ground_truth", node, ros::Duration(20.0));
-  ros::WallDuration(3.0).sleep();
-
-  std::printf("\nThe synthetic D415 publishes (realsense2_camera names, align_depth:=true):\n");
-  color.print();
-  depth.print();
-  std::printf("  %-45s (sensor_msgs/CameraInfo)\n", "/camera/color/camera_info");
-  std::printf("  %-45s (sensor_msgs/CameraInfo)\n", "/camera/aligned_depth_to_color/camera_info");
-  if (!truth)
-  {
-    std::printf("no ground truth received\n");
-    return 1;
-  }
-  std::printf("\nGround truth (/camera/synthetic_camera/ground_truth and tf truth_<type>_<n>), frame %s:\n",
-              truth->header.frame_id.c_str());
-  std::printf("  %-16s %8s %8s %8s %9s\n", "brick", "x [m]", "y [m]", "z [m]", "visible");
-  for (const auto& brick : truth->bricks)
-    std::printf("  %-16s %8.3f %8.3f %8.3f %8.0f%%\n", ("truth_" + brick.type + "_" + std::to_string(brick.instance_id)).c_str(),
-                brick.pose.position.x, brick.pose.position.y, brick.pose.position.z, 100.0 * brick.visible_fraction);
-  return 0;
+  return run(node, Options());
 }

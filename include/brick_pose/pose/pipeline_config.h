@@ -1,0 +1,26 @@
+#pragma once
+// Named parameters of the pipeline stages (front end, registration,
+// refinement), read through a ParamLookup: the nodelets feed them from
+// rosparam, the tools from the command line.
+
+#include "brick_pose/catalogue/brick_catalogue.h"
+#include "brick_pose/common/param_parsing.h"
+#include "brick_pose/pose/brick_pose_estimator.h"
+#include "brick_pose/roi/front_end.h"
+
+namespace brick_pose
+{
+/// `catalogue_path` (empty or unset: the built-in MBZIRC 2020 bricks).
+BrickCatalogue catalogueFrom(const ParamLookup& lookup);
+
+/// `mode` (hsv | region_growing), `min_area_px`, `crop_min_depth_m`,
+/// `crop_max_depth_m`, `outlier_removal`, `voxel_leaf_m` (0 disables),
+/// `mls`, `mls_search_radius_m`, `dimension_tolerance_m`, `max_plane_rms_m`.
+/// Throws ConfigError naming the parameter.
+FrontEndParams frontEndParamsFrom(const ParamLookup& lookup);
+
+/// `overlap`, `delta_m`, `sample_size`, `max_time_s`, `seed`, `refinement`
+/// (correction | icp | none), `correction_mode` (paper | full),
+/// `icp_max_correspondence_m`, `icp_max_iterations`.
+BrickPoseEstimatorParams estimatorParamsFrom(const ParamLookup& lookup);
+}  // namespace brick_pose
