@@ -95,6 +95,43 @@ TEST(FrontEnd, PartlyOccludedPlateIsStillACandidate)
   EXPECT_NEAR(result.candidates[0].length_m, 0.4, 0.01);
 }
 
+TEST(FrontEnd, TwoTouchingPlatesSideBySideAreSplit)
+{
+  // Two green plates in a row with no visible gap: one colour blob 0.6 x 0.41.
+  test::PlateScene scene = d415Scene();
+  scene.width_m = 0.41;
+  const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020()).process(scene.frame());
+  ASSERT_EQ(result.candidates.size(), 2u);
+  for (const BrickCandidate& c : result.candidates)
+  {
+    EXPECT_EQ(c.type_name, "green");
+    EXPECT_NEAR(c.length_m, 0.6, 0.01);
+    EXPECT_NEAR(c.width_m, 0.205, 0.01);
+  }
+  // The two centres are one plate width apart across the row.
+  const Eigen::Vector3d between = result.candidates[0].centroid_m - result.candidates[1].centroid_m;
+  EXPECT_NEAR(std::abs(between.dot(scene.rotation.col(1))), 0.205, 0.01);
+  EXPECT_LT(std::abs(between.dot(scene.rotation.col(0))), 0.01);
+}
+
+TEST(FrontEnd, PiecesOfAPlateCutByAnOccluderAreJoined)
+{
+  test::PlateScene scene = d415Scene();
+  scene.has_notch = true;  // a band across the whole plate is hidden
+  scene.notch_min_m = Eigen::Vector2d(-0.02, -0.11);
+  scene.notch_max_m = Eigen::Vector2d(0.06, 0.11);
+  FrontEndParams params;
+  const FrontEndResult joined = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
+  ASSERT_EQ(joined.candidates.size(), 1u);
+  EXPECT_NEAR(joined.candidates[0].length_m, 0.6, 0.005);
+  EXPECT_NEAR(joined.candidates[0].width_m, 0.2, 0.005);
+  EXPECT_TRUE(joined.candidates[0].complete);
+  EXPECT_LT((joined.candidates[0].centroid_m - scene.centre_m).norm(), 0.005);
+
+  params.merge_face_pieces = false;
+  EXPECT_EQ(FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame()).candidates.size(), 2u);
+}
+
 TEST(FrontEnd, RegionGrowingModeClassifiesByDimensions)
 {
   test::PlateScene scene = d415Scene();

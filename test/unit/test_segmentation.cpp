@@ -2,6 +2,7 @@
 // region growing on synthetic plates.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -118,6 +119,40 @@ TEST(HsvSegmenter, SeparatePlatesAreSeparateSegmentsAndHolesHaveNoIndices)
   EXPECT_EQ(segments[1].area_px, 100 * 40);
   EXPECT_EQ(static_cast<int>(segments[1].pixel_indices.size()), 100 * 40 - 100);
   EXPECT_EQ(segments[0].type_name, "blue");
+}
+
+TEST(HsvSegmenter, TouchingPlatesAtDifferentDepthsAreSeparate)
+{
+  // A plate on a lower layer seen right next to one on the upper layer: one
+  // colour blob, two depths, and the stereo shadow (no depth) between them.
+  cv::Mat rgb(200, 300, CV_8UC3, cv::Scalar(128, 128, 128));
+  cv::rectangle(rgb, cv::Rect(40, 50, 200, 100), cv::Scalar(25, 60, 200), cv::FILLED);
+  RgbdFrame frame = flatFrame(rgb, 1.2f);
+  frame.depth_m(cv::Rect(140, 0, 160, 200)).setTo(1.0f);
+  EXPECT_EQ(HsvSegmenter().segment(frame, BrickCatalogue::mbzirc2020()).size(), 2u);
+  frame.depth_m(cv::Rect(136, 0, 8, 200)).setTo(std::numeric_limits<float>::quiet_NaN());
+  const auto segments = HsvSegmenter().segment(frame, BrickCatalogue::mbzirc2020());
+  ASSERT_EQ(segments.size(), 2u);
+  EXPECT_GT(segments[0].area_px + segments[1].area_px, 200 * 100 - 20 * 100);
+
+  HsvSegmenterParams no_cut;
+  no_cut.depth_jump_m = 0.0;
+  EXPECT_EQ(HsvSegmenter(no_cut).segment(frame, BrickCatalogue::mbzirc2020()).size(), 1u);
+}
+
+TEST(HsvSegmenter, FullResolutionSearchFindsTheSameSegments)
+{
+  cv::Mat rgb(240, 320, CV_8UC3, cv::Scalar(128, 128, 128));
+  cv::rectangle(rgb, cv::Rect(31, 41, 101, 47), cv::Scalar(245, 140, 15), cv::FILLED);
+  HsvSegmenterParams full;
+  full.coarse_factor = 1;
+  const auto coarse = HsvSegmenter().segment(flatFrame(rgb), BrickCatalogue::mbzirc2020());
+  const auto fine = HsvSegmenter(full).segment(flatFrame(rgb), BrickCatalogue::mbzirc2020());
+  ASSERT_EQ(coarse.size(), 1u);
+  ASSERT_EQ(fine.size(), 1u);
+  EXPECT_EQ(coarse[0].type_name, "orange");
+  EXPECT_EQ(coarse[0].area_px, 101 * 47);
+  EXPECT_EQ(coarse[0].pixel_indices, fine[0].pixel_indices);
 }
 
 TEST(HsvSegmenter, MorphologyRemovesSpeckleAndFillsPinholes)
