@@ -81,7 +81,6 @@ public:
 private:
   BrickCatalogue catalogue_;
   BrickPoseEstimatorParams params_;
-  registration::Super4PCS super4pcs_;
   std::map<std::string, registration::PointSet> models_;
 };
 }  // namespace brick_pose

@@ -1,6 +1,9 @@
 #include "brick_pose/pose/brick_pose_estimator.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <unordered_set>
 
 #include "brick_pose/common/errors.h"
 #include "brick_pose/correction/measured_face.h"
@@ -11,9 +14,31 @@ namespace brick_pose
 {
 namespace
 {
+/// Below this, too little of the face is seen to fix its pose.
+constexpr double kMinOverlap = 0.25;
+
 double millisecondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Area of the face the segment covers: its points projected into the plane
+/// and counted on a 1 cm grid. Independent of how the segment was sampled.
+double visibleFaceArea(const pcl::PointCloud<pcl::PointXYZ>& points, const Eigen::Vector3d& normal)
+{
+  constexpr double kCell_m = 0.01;
+  const Eigen::Vector3d u = normal.unitOrthogonal();
+  const Eigen::Vector3d v = normal.cross(u);
+  std::unordered_set<std::uint64_t> cells;
+  for (const pcl::PointXYZ& point : points)
+  {
+    const Eigen::Vector3d p(point.x, point.y, point.z);
+    if (!p.allFinite()) continue;
+    const auto i = static_cast<std::int64_t>(std::floor(p.dot(u) / kCell_m));
+    const auto j = static_cast<std::int64_t>(std::floor(p.dot(v) / kCell_m));
+    cells.insert((static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(j & 0xffffffff));
+  }
+  return static_cast<double>(cells.size()) * kCell_m * kCell_m;
 }
 
 MeasuredFace measuredFaceOf(const BrickCandidate& candidate)
@@ -35,7 +60,7 @@ void BrickPoseEstimatorParams::validate() const
 }
 
 BrickPoseEstimator::BrickPoseEstimator(const BrickCatalogue& catalogue, const BrickPoseEstimatorParams& params)
-  : catalogue_(catalogue), params_(params), super4pcs_(params.super4pcs)
+  : catalogue_(catalogue), params_(params)
 {
   params_.validate();
   if (catalogue_.empty()) throw ConfigError("brick pose estimator: the catalogue is empty");
@@ -57,8 +82,16 @@ BrickRegistration BrickPoseEstimator::registerCandidate(const BrickCandidate& ca
   // The model carries normals and the segment does not: register points only.
   registration::PointSet source;
   source.points = model->second.points;
+  // The LCP of the whole-face model can reach only the fraction of the face
+  // that is visible: an occluded brick needs a lower overlap, or Super4PCS
+  // rejects its (correct) pose as too poor a match.
+  registration::Super4PCSParams params = params_.super4pcs;
+  const BrickType& type = catalogue_.at(candidate.type_name);
+  const double visible_fraction =
+      visibleFaceArea(*candidate.points, candidate.normal) / (type.length_m * type.width_m);
+  params.overlap = std::clamp(visible_fraction, kMinOverlap, params_.super4pcs.overlap);
   BrickRegistration registration;
-  registration.result = super4pcs_.align(source, target);
+  registration.result = registration::Super4PCS(params).align(source, target);
   registration.elapsed_ms = millisecondsSince(start);
   if (!registration.result.success)
     throw InputError("Super4PCS found no pose for '" + candidate.type_name + "': " + registration.result.reason);

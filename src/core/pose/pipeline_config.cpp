@@ -21,8 +21,11 @@ FrontEndParams frontEndParamsFrom(const ParamLookup& lookup)
   read.number("crop_min_depth_m", params.cloud.min_depth_m);
   read.number("crop_max_depth_m", params.cloud.max_depth_m);
   read.flag("outlier_removal", params.cloud.outlier_removal_enabled);
-  read.number("voxel_leaf_m", params.cloud.voxel_leaf_m);
-  params.cloud.voxel_enabled = params.cloud.voxel_leaf_m > 0.0;
+  // voxel_leaf_m 0 switches the voxel grid off (and keeps a valid leaf size).
+  double voxel_leaf_m = params.cloud.voxel_leaf_m;
+  read.number("voxel_leaf_m", voxel_leaf_m);
+  params.cloud.voxel_enabled = voxel_leaf_m > 0.0;
+  if (params.cloud.voxel_enabled) params.cloud.voxel_leaf_m = voxel_leaf_m;
   read.flag("mls", params.cloud.mls_enabled);
   read.number("mls_search_radius_m", params.cloud.mls_search_radius_m);
   read.number("dimension_tolerance_m", params.roi.dimensions.tolerance_m);
