@@ -61,8 +61,13 @@ struct BrickCandidate
   /// Area inside the segment's outline over the quad's area (1 for a whole,
   /// unoccluded face; lower for notched or irregular segments).
   double fill_ratio = 0.0;
+  /// Edge k (corner k to k+1) ends the visible face without being the
+  /// brick's edge: the image border or a closer surface (an occluder) lies
+  /// right outside it.
+  std::array<bool, 4> edge_truncated{{false, false, false, false}};
   /// True when length and width match the catalogue type within tolerance
-  /// (false for a partly occluded face that was still accepted).
+  /// and no edge is truncated (false for a partly occluded face that was
+  /// still accepted).
   bool complete = false;
 };
 }  // namespace brick_pose

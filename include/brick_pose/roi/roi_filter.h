@@ -39,6 +39,10 @@ struct RoiFilterParams
   /// (non-zero), faces whose normal is more than max_tilt_deg from it are not
   /// top faces and are dropped.
   Eigen::Vector3d up_direction = Eigen::Vector3d::Zero();
+  /// Truncated-edge test: pixels this far outside a quad edge that are
+  /// closer than the face's plane by occluder_margin_m are an occluder.
+  double edge_probe_offset_px = 5.0;
+  double occluder_margin_m = 0.03;
   double max_tilt_deg = 30.0;
   PlaneFitParams plane;
   QuadFitParams quad;

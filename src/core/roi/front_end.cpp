@@ -32,11 +32,12 @@ Segment joinSegments(const BrickCandidate& a, const BrickCandidate& b)
     cv::bitwise_or(target, piece->mask, target);
   }
   joined.area_px = cv::countNonZero(joined.mask);
-  joined.pixel_indices = a.pixel_indices;
-  joined.pixel_indices.insert(joined.pixel_indices.end(), b.pixel_indices.begin(), b.pixel_indices.end());
-  std::sort(joined.pixel_indices.begin(), joined.pixel_indices.end());
-  joined.pixel_indices.erase(std::unique(joined.pixel_indices.begin(), joined.pixel_indices.end()),
-                             joined.pixel_indices.end());
+  // Segments list their pixels in raster order: a linear merge keeps that.
+  std::vector<int> first = a.pixel_indices, second = b.pixel_indices;
+  if (!std::is_sorted(first.begin(), first.end())) std::sort(first.begin(), first.end());
+  if (!std::is_sorted(second.begin(), second.end())) std::sort(second.begin(), second.end());
+  joined.pixel_indices.reserve(first.size() + second.size());
+  std::set_union(first.begin(), first.end(), second.begin(), second.end(), std::back_inserter(joined.pixel_indices));
   return joined;
 }
 
@@ -108,6 +109,28 @@ void FrontEnd::mergeFacePieces(const RgbdFrame& frame, FrontEndResult& result) c
            std::abs(a.plane.signedDistance(b.centroid_m)) <= params_.merge_max_offset_m &&
            std::abs(b.plane.signedDistance(a.centroid_m)) <= params_.merge_max_offset_m;
   };
+  // Cheap test before the full ROI filtration of the joined segment: all
+  // eight corners must fit in one plate, measured along and across the
+  // first piece's long axis.
+  auto fitsOnePlate = [&](const BrickCandidate& a, const BrickCandidate& b) {
+    const BrickType* type = catalogue_.find(a.type_name);
+    if (!type) return false;
+    const Eigen::Vector3d along = (a.corners_m[1] - a.corners_m[0]).normalized();
+    const Eigen::Vector3d across = a.normal.cross(along).normalized();
+    double along_min = 1e9, along_max = -1e9, across_min = 1e9, across_max = -1e9;
+    for (const BrickCandidate* piece : {&a, &b})
+      for (const Eigen::Vector3d& corner : piece->corners_m)
+      {
+        along_min = std::min(along_min, corner.dot(along));
+        along_max = std::max(along_max, corner.dot(along));
+        across_min = std::min(across_min, corner.dot(across));
+        across_max = std::max(across_max, corner.dot(across));
+      }
+    const double tolerance_m = params_.roi.dimensions.tolerance_m;
+    const double extent_a = along_max - along_min, extent_b = across_max - across_min;
+    const double longer = std::max(extent_a, extent_b), shorter = std::min(extent_a, extent_b);
+    return longer <= type->length_m + tolerance_m && shorter <= type->width_m + tolerance_m;
+  };
   std::vector<BrickCandidate>& candidates = result.candidates;
   for (bool merged = true; merged;)
   {
@@ -115,7 +138,7 @@ void FrontEnd::mergeFacePieces(const RgbdFrame& frame, FrontEndResult& result) c
     for (std::size_t i = 0; i < candidates.size() && !merged; ++i)
       for (std::size_t j = i + 1; j < candidates.size() && !merged; ++j)
       {
-        if (!samePlane(candidates[i], candidates[j])) continue;
+        if (!samePlane(candidates[i], candidates[j]) || !fitsOnePlate(candidates[i], candidates[j])) continue;
         RoiResult joined = roi_filter_.filter(frame, joinSegments(candidates[i], candidates[j]), &result.timings.cloud);
         auto* candidate = std::get_if<BrickCandidate>(&joined);
         if (!candidate) continue;

@@ -57,6 +57,40 @@ double longEdgeSeparation(const std::array<Eigen::Vector3d, 4>& c)
   return 0.5 * (distanceToLine(0.5 * (c[0] + c[1]), c[3], c[2]) + distanceToLine(0.5 * (c[3] + c[2]), c[0], c[1]));
 }
 
+/// For each quad edge, whether the image border or a closer surface lies
+/// just outside most of it (see BrickCandidate::edge_truncated).
+std::array<bool, 4> truncatedEdges(const RgbdFrame& frame, const BrickCandidate& candidate, const RoiFilterParams& params)
+{
+  constexpr int kSamples = 16;
+  std::array<bool, 4> truncated{{false, false, false, false}};
+  for (int k = 0; k < 4; ++k)
+  {
+    const Eigen::Vector2d& a = candidate.corners_px[k];
+    const Eigen::Vector2d& b = candidate.corners_px[(k + 1) % 4];
+    Eigen::Vector2d outward(b.y() - a.y(), a.x() - b.x());
+    outward.normalize();
+    if (outward.dot(0.5 * (a + b) - candidate.centroid_px) < 0.0) outward = -outward;
+    int cut = 0;
+    for (int i = 0; i < kSamples; ++i)
+    {
+      const double t = 0.1 + 0.8 * i / (kSamples - 1);
+      const Eigen::Vector2d probe = a + t * (b - a) + params.edge_probe_offset_px * outward;
+      const int u = static_cast<int>(std::lround(probe.x())), v = static_cast<int>(std::lround(probe.y()));
+      if (u < 0 || v < 0 || u >= frame.width_px() || v >= frame.height_px())
+      {
+        ++cut;
+        continue;
+      }
+      const float z = frame.depthAt(u, v);
+      Eigen::Vector3d on_plane;
+      if (std::isnan(z) || !candidate.plane.intersectRay(frame.camera.ray(u, v), on_plane)) continue;
+      if (z < on_plane.z() - params.occluder_margin_m) ++cut;
+    }
+    truncated[k] = cut * 10 >= kSamples * 3;
+  }
+  return truncated;
+}
+
 /// Every k-th index so that about `max_count` remain (all when max_count is 0).
 std::vector<int> thinned(const std::vector<int>& indices, int max_count)
 {
@@ -66,6 +100,11 @@ std::vector<int> thinned(const std::vector<int>& indices, int max_count)
   kept.reserve(indices.size() / step + 1);
   for (std::size_t i = 0; i < indices.size(); i += step) kept.push_back(indices[i]);
   return kept;
+}
+
+bool anyTruncated(const BrickCandidate& candidate)
+{
+  return std::any_of(candidate.edge_truncated.begin(), candidate.edge_truncated.end(), [](bool cut) { return cut; });
 }
 
 /// Index (0 or 1) of the corner starting the first long edge of a
@@ -108,10 +147,16 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
     outcome.candidates.push_back(std::move(candidate));
     return outcome;
   }
-  const BrickType* type = segment.type_name.empty() ? nullptr : catalogue_.find(segment.type_name);
-  const std::vector<Segment> parts =
-      measured && type ? splitSideBySide(frame, segment, candidate, *type, params_.dimensions.tolerance_m)
-                       : std::vector<Segment>();
+  // A coloured segment can only hold plates of its type; a colour-free one
+  // is tried against each type in turn.
+  std::vector<Segment> parts;
+  if (measured)
+    for (const BrickType& type : catalogue_.types())
+    {
+      if (!segment.type_name.empty() && type.name != segment.type_name) continue;
+      parts = splitSideBySide(frame, segment, candidate, type, params_.dimensions.tolerance_m);
+      if (!parts.empty()) break;
+    }
   if (parts.empty())
   {
     outcome.rejections.push_back(*reason);
@@ -207,6 +252,7 @@ std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const S
   candidate.t2_m = candidate.centroid_m - 0.25 * candidate.length_m * long_axis;
   candidate.t1_px = camera.project(candidate.t1_m);
   candidate.t2_px = camera.project(candidate.t2_m);
+  candidate.edge_truncated = truncatedEdges(frame, candidate, params_);
   return std::nullopt;
 }
 
@@ -229,11 +275,13 @@ std::optional<std::string> RoiFilter::assignType(const Segment& segment, BrickCa
     if (auto reason = checkTopFaceDimensions(candidate.length_m, candidate.width_m, thickness_m, *type, tolerance))
       return segment.type_name + ": " + *reason;
     candidate.type_name = type->name;
-    candidate.complete = complete(*type, tolerance.tolerance_m);
+    candidate.complete = complete(*type, tolerance.tolerance_m) && !anyTruncated(candidate);
     return std::nullopt;
   }
 
-  // Colour-free: only whole faces can be told apart by size.
+  // Colour-free: only whole faces can be told apart by size (half a blue
+  // brick looks like a green one).
+  if (anyTruncated(candidate)) return std::string("face is cut by an occluder or the image border");
   if (candidate.fill_ratio < params_.min_fill_ratio)
     return describe("segment fills", candidate.fill_ratio, "of its quad, less than", params_.min_fill_ratio);
   if (thickness_m > tolerance.max_thickness_m)

@@ -90,48 +90,53 @@ void HsvSegmenter::cutAtDepthJumps(cv::Mat& mask, const cv::Mat& depth_m) const
 {
   if (params_.depth_jump_m <= 0.0) return;
   const float jump = static_cast<float>(params_.depth_jump_m);
-  const cv::Mat original = mask.clone();
-  // Depth of the mask pixel at (y, x), NaN outside the mask or the image.
-  auto depthAt = [&](int y, int x) {
-    if (y < 0 || x < 0 || y >= mask.rows || x >= mask.cols || !original.at<std::uint8_t>(y, x))
-      return std::numeric_limits<float>::quiet_NaN();
-    return depth_m.at<float>(y, x);
-  };
-  // First valid depth from (y, x) stepping by (dy, dx), within a few pixels:
-  // stereo shadows and flying-pixel dropouts leave short gaps at depth edges.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  // Depth of the mask pixels, NaN elsewhere: one array to look at.
+  cv::Mat masked(mask.size(), CV_32FC1, cv::Scalar(nan));
+  depth_m.copyTo(masked, mask);
+  const int rows = mask.rows, cols = mask.cols;
+  auto differ = [jump](float a, float b) { return std::abs(a - b) > jump; };  // false when either is NaN
+
+  // First depth from (y, x) stepping by (dy, dx) within a few mask pixels:
+  // stereo shadows and flying-pixel dropouts leave gaps at depth edges.
   constexpr int kMaxGapPx = 16;  // the shadow of a 0.2 m step at 0.8 m is ~10 px wide
   auto firstValid = [&](int y, int x, int dy, int dx) {
     for (int step = 1; step <= kMaxGapPx; ++step)
     {
       const int yy = y + step * dy, xx = x + step * dx;
-      if (yy < 0 || xx < 0 || yy >= mask.rows || xx >= mask.cols || !original.at<std::uint8_t>(yy, xx)) break;
-      const float z = depth_m.at<float>(yy, xx);
+      if (yy < 0 || xx < 0 || yy >= rows || xx >= cols || !mask.at<std::uint8_t>(yy, xx)) break;
+      const float z = masked.at<float>(yy, xx);
       if (!std::isnan(z)) return z;
     }
-    return std::numeric_limits<float>::quiet_NaN();
+    return nan;
   };
-  auto differ = [&](float a, float b) { return std::abs(a - b) > jump; };  // false when either is NaN
+
   // A jump is marked on both sides, so that two cleared pixels separate the
   // plates even under 8-connectivity. Only jumps to another mask pixel
   // count: the outline against the background keeps its pixels. A pixel
   // without depth is cleared when the depths on either side of it differ.
-  for (int y = 0; y < mask.rows; ++y)
+  std::vector<cv::Point> cut;
+  for (int y = 0; y < rows; ++y)
   {
-    const std::uint8_t* row = original.ptr<std::uint8_t>(y);
-    for (int x = 0; x < mask.cols; ++x)
+    const std::uint8_t* mask_row = mask.ptr<std::uint8_t>(y);
+    const float* row = masked.ptr<float>(y);
+    const float* up = y > 0 ? masked.ptr<float>(y - 1) : nullptr;
+    const float* down = y + 1 < rows ? masked.ptr<float>(y + 1) : nullptr;
+    for (int x = 0; x < cols; ++x)
     {
-      if (!row[x]) continue;
-      const float z = depth_m.at<float>(y, x);
-      bool cut = false;
+      if (!mask_row[x]) continue;
+      const float z = row[x];
+      bool at_jump = false;
       if (std::isnan(z))
-        cut = differ(firstValid(y, x, 0, -1), firstValid(y, x, 0, 1)) ||
-              differ(firstValid(y, x, -1, 0), firstValid(y, x, 1, 0));
+        at_jump = differ(firstValid(y, x, 0, -1), firstValid(y, x, 0, 1)) ||
+                  differ(firstValid(y, x, -1, 0), firstValid(y, x, 1, 0));
       else
-        cut = differ(z, depthAt(y, x + 1)) || differ(z, depthAt(y, x - 1)) || differ(z, depthAt(y + 1, x)) ||
-              differ(z, depthAt(y - 1, x));
-      if (cut) mask.at<std::uint8_t>(y, x) = 0;
+        at_jump = (x + 1 < cols && differ(z, row[x + 1])) || (x > 0 && differ(z, row[x - 1])) ||
+                  (down && differ(z, down[x])) || (up && differ(z, up[x]));
+      if (at_jump) cut.emplace_back(x, y);
     }
   }
+  for (const cv::Point& p : cut) mask.at<std::uint8_t>(p) = 0;
 }
 
 std::vector<cv::Rect> HsvSegmenter::coarseBoxes(const cv::Mat& coarse_hsv, const HsvRange& range, cv::Size image_size) const
