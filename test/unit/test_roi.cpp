@@ -265,6 +265,38 @@ TEST(RoiFilter, CornersCentreAndAxisPointsOfATiltedPlate)
   EXPECT_LT((frame.camera.project(c.centroid_m) - c.centroid_px).norm(), 1e-6);
 }
 
+TEST(RoiFilter, EdgesCutByTheImageBorderAreTruncated)
+{
+  test::PlateScene scene;
+  scene.camera = test::PlateScene::vgaCamera();
+  scene.centre_m = Eigen::Vector3d(0.0, 0.0, 1.0);
+  scene.rotation = test::PlateScene::facingCamera(0.0);
+  {
+    const RgbdFrame frame = scene.frame();
+    const RoiResult whole = filterScene(scene, frame);
+    ASSERT_TRUE(std::holds_alternative<BrickCandidate>(whole));
+    const BrickCandidate& c = std::get<BrickCandidate>(whole);
+    for (const bool cut : c.edge_truncated) EXPECT_FALSE(cut);
+    EXPECT_TRUE(c.complete);
+  }
+  // Shifted right so that its +x end (0.3 m, 180 px) leaves the image.
+  scene.centre_m.x() = 0.45;
+  const RgbdFrame frame = scene.frame();
+  const RoiResult clipped = filterScene(scene, frame);
+  ASSERT_TRUE(std::holds_alternative<BrickCandidate>(clipped)) << std::get<std::string>(clipped);
+  const BrickCandidate& c = std::get<BrickCandidate>(clipped);
+  EXPECT_FALSE(c.complete);
+  int truncated = 0;
+  for (int k = 0; k < 4; ++k)
+    if (c.edge_truncated[k])
+    {
+      ++truncated;
+      // The truncated edge is the one along the right image border.
+      EXPECT_GT(std::min(c.corners_px[k].x(), c.corners_px[(k + 1) % 4].x()), 630.0);
+    }
+  EXPECT_EQ(truncated, 1);
+}
+
 TEST(RoiFilter, RejectsAnOversizedPlateWithAReason)
 {
   test::PlateScene scene;
