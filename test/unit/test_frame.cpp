@@ -193,6 +193,21 @@ TEST(OrganizedCloud, InverseProjectsEveryPixelAndKeepsHolesAsNan)
   EXPECT_TRUE(std::isnan(cloud->at(6, 4).x));
 }
 
+TEST(OrganizedCloud, FillReusesACloudAcrossFrames)
+{
+  pcl::PointCloud<pcl::PointXYZRGB> cloud;
+  fillOrganizedCloud(makeRgbdFrame(colourImage(), depthMillimetres(8, 6, 1000), smallCamera(), {}), cloud);
+  const pcl::PointXYZRGB* storage = cloud.points.data();
+  cv::Mat depth = depthMillimetres(8, 6, 3000);
+  depth.at<std::uint16_t>(0, 0) = 0;
+  fillOrganizedCloud(makeRgbdFrame(colourImage(), depth, smallCamera(), {7000, "cam"}), cloud);
+  EXPECT_EQ(cloud.points.data(), storage);
+  EXPECT_TRUE(std::isnan(cloud.at(0, 0).x));
+  EXPECT_NEAR(cloud.at(7, 5).z, 3.0, 1e-6);
+  EXPECT_NEAR(cloud.at(7, 5).x, (7 - 3.5) * 3.0 / 10.0, 1e-6);
+  EXPECT_EQ(cloud.header.stamp, 7u);  // microseconds
+}
+
 TEST(OrganizedCloud, BackProjectsSelectedPixelsSkippingHoles)
 {
   cv::Mat depth = depthMillimetres(8, 6, 1000);
