@@ -20,6 +20,7 @@
 
 #include "brick_pose/common/errors.h"
 #include "brick_pose/frame/frame_builder.h"
+#include "brick_pose/frame/stamp_order.h"
 #include "brick_pose/ros/conversions.h"
 #include "brick_pose/ros/pipeline_messages.h"
 #include "brick_pose/ros/synthetic_frame_messages.h"
@@ -62,7 +63,6 @@ private:
     int queue_size = 5;
     private_node.param<std::string>("camera_ns", camera_ns, "/camera");
     private_node.param("queue_size", queue_size, 5);
-    private_node.param("max_frame_age_s", max_frame_age_s_, 1.0);
     queue_size = std::max(queue_size, 1);
 
     ros::NodeHandle camera_node(camera_ns);
@@ -74,8 +74,43 @@ private:
         SyncPolicy(queue_size), color_subscriber_, depth_subscriber_, info_subscriber_);
     synchronizer_->registerCallback(&RgbdIngestionNodelet::onFrame, this);
     frame_publisher_ = node.advertise<FrameMessage>("frame", 2);
+    watchInputs(camera_node);
     NODELET_INFO("ingesting %s/{%s, %s, %s}", camera_node.getNamespace().c_str(), CameraTopics::kColorImage,
                  CameraTopics::kDepthImage, CameraTopics::kColorInfo);
+  }
+
+  /// The synchroniser is silent when one input is missing; these light
+  /// subscriptions (shared pointers, no copies) tell the user which one.
+  void watchInputs(ros::NodeHandle& camera_node)
+  {
+    const auto stamp_now = [](ros::WallTime& last) { return [&last](const auto&) { last = ros::WallTime::now(); }; };
+    watch_subscribers_.push_back(camera_node.subscribe<sensor_msgs::Image>(CameraTopics::kColorImage, 1,
+                                                                           stamp_now(last_color_)));
+    watch_subscribers_.push_back(camera_node.subscribe<sensor_msgs::Image>(CameraTopics::kDepthImage, 1,
+                                                                           stamp_now(last_depth_)));
+    watch_subscribers_.push_back(camera_node.subscribe<sensor_msgs::CameraInfo>(CameraTopics::kColorInfo, 1,
+                                                                                stamp_now(last_info_)));
+    watchdog_ = camera_node.createWallTimer(ros::WallDuration(2.0), &RgbdIngestionNodelet::checkInputs, this);
+    camera_ns_ = camera_node.getNamespace();
+  }
+
+  void checkInputs(const ros::WallTimerEvent&)
+  {
+    const ros::WallTime now = ros::WallTime::now();
+    const auto recent = [&now](const ros::WallTime& last) { return !last.isZero() && (now - last).toSec() < 2.0; };
+    if (!recent(last_color_) && !recent(last_depth_)) return;  // camera off: nothing to say every 2 s
+    if (!recent(last_color_))
+      NODELET_ERROR_THROTTLE(10.0, "no colour image on %s/%s: frames cannot be built", camera_ns_.c_str(),
+                             CameraTopics::kColorImage);
+    if (!recent(last_depth_))
+      NODELET_ERROR_THROTTLE(10.0, "no aligned depth on %s/%s (is align_depth enabled?)", camera_ns_.c_str(),
+                             CameraTopics::kDepthImage);
+    if (!recent(last_info_))
+      NODELET_ERROR_THROTTLE(10.0, "no camera_info on %s/%s: frames cannot be built", camera_ns_.c_str(),
+                             CameraTopics::kColorInfo);
+    if (recent(last_color_) && recent(last_depth_) && recent(last_info_) && !recent(last_frame_))
+      NODELET_ERROR_THROTTLE(10.0, "colour, depth and camera_info arrive but no synchronised frame for 2 s: "
+                             "their stamps do not match, or every frame is rejected (see errors above)");
   }
 
   void onFrame(const sensor_msgs::ImageConstPtr& color, const sensor_msgs::ImageConstPtr& depth,
@@ -96,9 +131,6 @@ private:
   boost::shared_ptr<FrameMessage> buildFrame(const sensor_msgs::Image& color, const sensor_msgs::Image& depth,
                                              const sensor_msgs::CameraInfo& info)
   {
-    if (!last_stamp_.isZero() && color.header.stamp <= last_stamp_)
-      throw InputError("stamp " + std::to_string(color.header.stamp.toSec()) + " is not after the previous frame's " +
-                       std::to_string(last_stamp_.toSec()) + " (out of order or a bag restarted)");
     checkBuffer(color, "colour");
     checkBuffer(depth, "depth");
     auto message = boost::make_shared<FrameMessage>();
@@ -108,20 +140,34 @@ private:
     header.frame_id = color.header.frame_id;
     message->frame =
         makeRgbdFrame(viewOf(color), viewOf(depth), ros_conversions::fromCameraInfo(info), header);
-    last_stamp_ = color.header.stamp;
+    switch (stamp_order_.admit(header.stamp_ns))
+    {
+      case StampOrder::Verdict::kOutOfOrder:
+        throw InputError("stamp " + std::to_string(color.header.stamp.toSec()) + " is not after the previous frame's " +
+                         std::to_string(stamp_order_.lastStampNs() * 1e-9) + " (late or duplicated frame)");
+      case StampOrder::Verdict::kRestarted:
+        NODELET_WARN("time jumped back to %.3f: a restarted or looped bag? starting over", color.header.stamp.toSec());
+        break;
+      case StampOrder::Verdict::kInOrder:
+        break;
+    }
     return message;
   }
 
   void publish(const boost::shared_ptr<FrameMessage>& message, const ros::WallTime& arrival)
   {
     message->arrival = arrival;
+    last_frame_ = arrival;
     NODELET_DEBUG("frame %.3f ingested in %.2f ms", message->header.stamp.toSec(),
                   (ros::WallTime::now() - arrival).toSec() * 1e3);
     frame_publisher_.publish(boost::shared_ptr<const FrameMessage>(message));
   }
 
-  double max_frame_age_s_ = 1.0;
-  ros::Time last_stamp_;
+  StampOrder stamp_order_;
+  std::string camera_ns_;
+  std::vector<ros::Subscriber> watch_subscribers_;
+  ros::WallTimer watchdog_;
+  ros::WallTime last_color_, last_depth_, last_info_, last_frame_;
   std::unique_ptr<image_transport::ImageTransport> camera_transport_;
   image_transport::SubscriberFilter color_subscriber_;
   image_transport::SubscriberFilter depth_subscriber_;

@@ -2,7 +2,8 @@
 // stage 2). Checks each segment's OBB against the catalogue, fits the
 // least-area quadrilateral, inverse-projects its corners, T1, T2 and centre;
 // publishes the brick candidates on `candidates`, in-process. Dropped
-// segments are logged at debug level with the reason.
+// segments are logged at debug level with the reason. `debug_image` shows
+// the quads, T1/T2 and the dropped segments, drawn only when subscribed.
 
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
@@ -10,6 +11,8 @@
 
 #include "brick_pose/common/errors.h"
 #include "brick_pose/pose/pipeline_config.h"
+#include "brick_pose/roi/candidate_overlay.h"
+#include "brick_pose/ros/conversions.h"
 #include "brick_pose/ros/param_lookup.h"
 #include "brick_pose/ros/pipeline_messages.h"
 
@@ -32,6 +35,7 @@ private:
       return;
     }
     candidates_publisher_ = node.advertise<CandidatesMessage>("candidates", 2);
+    debug_image_publisher_ = node.advertise<sensor_msgs::Image>("debug_image", 1);
     segments_subscriber_ = node.subscribe("segments", 2, &RoiFilterNodelet::onSegments, this);
   }
 
@@ -63,11 +67,16 @@ private:
                   message->front_end.candidates.size(), message->front_end.rejections.size(),
                   message->front_end.timings.total_ms);
     candidates_publisher_.publish(CandidatesMessageConstPtr(message));
+    // Drawing costs a frame copy: only for someone watching.
+    if (debug_image_publisher_.getNumSubscribers() > 0)
+      debug_image_publisher_.publish(ros_conversions::toImageMessage(
+          drawCandidateOverlay(segments->frame->frame.rgb, message->front_end), "rgb8", segments->header));
   }
 
   std::unique_ptr<FrontEnd> front_end_;
   ros::Subscriber segments_subscriber_;
   ros::Publisher candidates_publisher_;
+  ros::Publisher debug_image_publisher_;
 };
 }  // namespace brick_pose
 
