@@ -26,4 +26,11 @@ int sideBySideCount(double across_m, double width_m);
 /// defect deeper than 4 px (the visible end of a gap) close to that spacing.
 std::vector<Segment> splitSideBySide(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
                                      const BrickType& type, double tolerance_m);
+/// Plates at different heights that still touch in a colour segment (an edge
+/// the image-level depth cut missed: flying pixels, shadows): the parts of
+/// `segment` whose pixels are 4-connected through steps of at most
+/// `max_step_m` in depth, largest first, each of at least `min_area_px`.
+/// Pixels without depth belong to no part. Empty when there is only one part.
+std::vector<Segment> splitAtDepthSteps(const RgbdFrame& frame, const Segment& segment, double max_step_m,
+                                       int min_area_px);
 }  // namespace brick_pose

@@ -28,6 +28,9 @@ struct RoiFilterParams
   /// of 200000, and ten times cheaper. 0 keeps every pixel.
   int max_points = 20000;
   double max_plane_rms_m = 0.015; ///< A top face is planar; more means a bent/merged segment.
+  /// A segment failing the plane test is split where neighbouring depths
+  /// step by more than this (D415 noise between neighbours at 2 m: ~1 cm).
+  double max_depth_step_m = 0.03;
   DimensionTolerance dimensions;  ///< Check of the quad's length/width and the OBB thickness.
   /// Colour-free segments get the type whose length and width are both
   /// within this distance (closest wins); they must be complete faces.
@@ -68,11 +71,11 @@ public:
   /// `cloud_timings` (optional) accumulates the cloud-processing time.
   RoiResult filter(const RgbdFrame& frame, const Segment& segment, CloudProcessingTimings* cloud_timings = nullptr) const;
 
-  /// Like filter(), but a coloured segment that measures as n >= 2 plates of
-  /// its type lying side by side (rows of an organised pile, whose gaps
-  /// perspective hides) is cut into n parts, each filtered on its own. Cuts
-  /// are spaced evenly on the face's plane, or pass through the apex of a
-  /// deep convexity defect (the visible end of a gap) near that position.
+  /// Like filter(), but a segment that measures as n >= 2 plates of its type
+  /// lying side by side (rows of an organised pile, whose gaps perspective
+  /// hides) is cut into n parts, each filtered on its own (see
+  /// splitSideBySide()); one that is not planar is split where its depth
+  /// steps (see splitAtDepthSteps()).
   RoiOutcome filterSplitting(const RgbdFrame& frame, const Segment& segment,
                              CloudProcessingTimings* cloud_timings = nullptr) const;
 

@@ -135,4 +135,62 @@ std::vector<Segment> splitSideBySide(const RgbdFrame& frame, const Segment& segm
   }
   return split;
 }
+std::vector<Segment> splitAtDepthSteps(const RgbdFrame& frame, const Segment& segment, double max_step_m,
+                                       int min_area_px)
+{
+  const cv::Rect& box = segment.bounding_box_px;
+  const cv::Mat depth = frame.depth_m(box);
+  cv::Mat labels(box.size(), CV_32SC1, cv::Scalar(0));
+  std::vector<int> areas(1, 0);
+  std::vector<cv::Point> stack;
+  const float max_step = static_cast<float>(max_step_m);
+  for (int y = 0; y < box.height; ++y)
+    for (int x = 0; x < box.width; ++x)
+    {
+      if (!segment.mask.at<std::uint8_t>(y, x) || labels.at<int>(y, x) || std::isnan(depth.at<float>(y, x))) continue;
+      const int label = static_cast<int>(areas.size());
+      areas.push_back(0);
+      labels.at<int>(y, x) = label;
+      stack.assign(1, cv::Point(x, y));
+      while (!stack.empty())
+      {
+        const cv::Point p = stack.back();
+        stack.pop_back();
+        ++areas[label];
+        const float z = depth.at<float>(p);
+        const cv::Point neighbours[4] = {{p.x + 1, p.y}, {p.x - 1, p.y}, {p.x, p.y + 1}, {p.x, p.y - 1}};
+        for (const cv::Point& q : neighbours)
+        {
+          if (q.x < 0 || q.y < 0 || q.x >= box.width || q.y >= box.height) continue;
+          if (!segment.mask.at<std::uint8_t>(q) || labels.at<int>(q)) continue;
+          const float zq = depth.at<float>(q);
+          if (std::isnan(zq) || std::abs(zq - z) > max_step) continue;
+          labels.at<int>(q) = label;
+          stack.push_back(q);
+        }
+      }
+    }
+
+  std::vector<int> kept;
+  for (int label = 1; label < static_cast<int>(areas.size()); ++label)
+    if (areas[label] >= min_area_px) kept.push_back(label);
+  if (kept.size() < 2) return {};
+  std::sort(kept.begin(), kept.end(), [&](int a, int b) { return areas[a] > areas[b]; });
+
+  std::vector<Segment> parts;
+  const int width = frame.width_px();
+  for (const int label : kept)
+  {
+    Segment part;
+    part.type_name = segment.type_name;
+    part.bounding_box_px = box;
+    part.mask = labels == label;
+    part.area_px = areas[label];
+    for (int y = 0; y < box.height; ++y)
+      for (int x = 0; x < box.width; ++x)
+        if (labels.at<int>(y, x) == label) part.pixel_indices.push_back((y + box.y) * width + x + box.x);
+    parts.push_back(std::move(part));
+  }
+  return parts;
+}
 }  // namespace brick_pose

@@ -157,6 +157,10 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
       parts = splitSideBySide(frame, segment, candidate, type, params_.dimensions.tolerance_m);
       if (!parts.empty()) break;
     }
+  // Plates at two heights joined through an edge without a clean depth jump
+  // give one bent "plane": split where the depth steps.
+  if (parts.empty() && !measured && candidate.plane.valid && candidate.plane.rms_m > params_.max_plane_rms_m)
+    parts = splitAtDepthSteps(frame, segment, params_.max_depth_step_m, params_.min_points);
   if (parts.empty())
   {
     outcome.rejections.push_back(*reason);
