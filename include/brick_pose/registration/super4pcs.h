@@ -51,8 +51,11 @@ struct Super4PCSParams
   double max_fit_rms_factor = 1.5;
   /// Symmetric trimmed ICP iterations on the best candidate (0 disables).
   int refine_iterations = 20;
-  /// Points kept (evenly spread) from each cloud for the ICP refinement.
+  /// Points kept (evenly spread) from the target for the ICP refinement...
   int refine_sample_size = 500;
+  /// ...and from the source: denser, because a clean source (a model)
+  /// resolves the edges that fix the in-plane pose of a face.
+  int refine_source_sample_size = 1500;
   /// Same seed and inputs => same result (unless the time budget cuts in).
   std::uint64_t seed = 1;
 

@@ -34,7 +34,16 @@ struct SymmetricIcpOptions
   double min_step_m = 1e-5;  ///< convergence: translation of one step
   double min_step_rad = 1e-5;  ///< convergence: rotation of one step
   /// Offsets along the surface up to this are sampling noise (hybrid step).
+  /// It shrinks geometrically to final_in_surface_tolerance_m (when smaller)
+  /// over the iterations: wide, the first steps slide fast along the surface;
+  /// narrow, the last ones see edges that overhang by less than the spacing.
   double in_surface_tolerance_m = 0.005;
+  double final_in_surface_tolerance_m = 0.005;
+  /// The same for target -> source pairs (whose offsets are sampling noise up
+  /// to the *source* spacing); <= 0 means the same as in_surface_tolerance_m.
+  /// A source denser than the target (a model can be) then resolves edges
+  /// that the target's own spacing would blur.
+  double reverse_in_surface_tolerance_m = 0.0;
   /// Optionally end with plain point-to-point iterations even with normals:
   /// the hybrid step leaves a dead zone of about the tolerance in the plane,
   /// where point-to-point settles where the overhangs on both sides balance.

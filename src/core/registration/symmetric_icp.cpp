@@ -21,8 +21,18 @@ namespace
 using Twist = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
-/// (source index, target index) pairs.
-using Correspondences = std::vector<std::pair<int, int>>;
+// Offsets along the normal beyond this many median offsets are outliers
+// (about 3 sigma for Gaussian noise: the median absolute value is 0.67 sigma),
+// but never below this fraction of the in-surface tolerance.
+constexpr double kOutlierOffsetPerMedian = 4.5;
+constexpr double kMinOutlierOffsetPerTolerance = 0.5;
+
+/// (source index, target index) pairs; the source -> target ones first.
+struct Correspondences
+{
+  std::vector<std::pair<int, int>> pairs;
+  std::size_t forward_count = 0;  ///< pairs[0, forward_count) are source -> target
+};
 
 double rmsRadius(const std::vector<Eigen::Vector3d>& points)
 {
@@ -78,13 +88,15 @@ Correspondences matchBothWays(const std::vector<Eigen::Vector3d>& moved_source,
                               const std::vector<Eigen::Vector3d>& target, const PointGrid& target_grid,
                               double radius_m)
 {
-  Correspondences pairs;
+  Correspondences matches;
+  auto& pairs = matches.pairs;
   for (std::size_t i = 0; i < moved_source.size(); ++i)
   {
     const int nearest = target_grid.nearestWithin(moved_source[i], radius_m);
     if (nearest >= 0)
       pairs.emplace_back(static_cast<int>(i), nearest);
   }
+  matches.forward_count = pairs.size();
   const PointGrid source_grid(moved_source, radius_m);
   for (std::size_t j = 0; j < target.size(); ++j)
   {
@@ -92,14 +104,15 @@ Correspondences matchBothWays(const std::vector<Eigen::Vector3d>& moved_source,
     if (nearest >= 0)
       pairs.emplace_back(nearest, static_cast<int>(j));
   }
-  return pairs;
+  return matches;
 }
 
 /// Step (applied on the left of the current pose) of closed-form point-to-point.
 std::optional<Eigen::Isometry3d> pointToPointStep(const std::vector<Eigen::Vector3d>& moved_source,
                                                   const std::vector<Eigen::Vector3d>& target,
-                                                  const Correspondences& pairs)
+                                                  const Correspondences& matches)
 {
+  const auto& pairs = matches.pairs;
   std::vector<Eigen::Vector3d> from;
   std::vector<Eigen::Vector3d> to;
   from.reserve(pairs.size());
@@ -119,9 +132,11 @@ std::optional<Eigen::Isometry3d> pointToPointStep(const std::vector<Eigen::Vecto
 /// linearised about the centroid of the moved source for conditioning.
 std::optional<Eigen::Isometry3d> hybridStep(const std::vector<Eigen::Vector3d>& moved_source,
                                             const std::vector<Eigen::Vector3d>& moved_normals,
-                                            const std::vector<Eigen::Vector3d>& target, const Correspondences& pairs,
-                                            double in_surface_tolerance_m)
+                                            const std::vector<Eigen::Vector3d>& target,
+                                            const Correspondences& matches, double in_surface_tolerance_m,
+                                            double reverse_in_surface_tolerance_m)
 {
+  const auto& pairs = matches.pairs;
   if (pairs.size() < 3)
     return std::nullopt;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -129,17 +144,33 @@ std::optional<Eigen::Isometry3d> hybridStep(const std::vector<Eigen::Vector3d>& 
     centre += moved_source[i];
   centre /= static_cast<double>(pairs.size());
 
+  // Stereo depth puts "flying pixels" between an edge and the background,
+  // far off the surface; a robust scale of the offsets along the normal
+  // (median absolute offset) drops them without a noise parameter.
+  std::vector<double> normal_offsets;
+  normal_offsets.reserve(pairs.size());
+  for (const auto& [i, j] : pairs)
+    normal_offsets.push_back(std::abs(moved_normals[i].dot(target[j] - moved_source[i])));
+  std::nth_element(normal_offsets.begin(), normal_offsets.begin() + normal_offsets.size() / 2, normal_offsets.end());
+  const double max_normal_offset_m =
+      std::max(kMinOutlierOffsetPerTolerance * in_surface_tolerance_m,
+               kOutlierOffsetPerMedian * normal_offsets[normal_offsets.size() / 2]);
+
   // Unknowns x = (dt, dw): a point p moves by dt + dw x (p - centre).
   Matrix6d normal_matrix = Matrix6d::Zero();
   Twist rhs = Twist::Zero();
-  for (const auto& [i, j] : pairs)
+  for (std::size_t k = 0; k < pairs.size(); ++k)
   {
+    const auto [i, j] = pairs[k];
+    const double tolerance_m = k < matches.forward_count ? in_surface_tolerance_m : reverse_in_surface_tolerance_m;
     const Eigen::Vector3d p = moved_source[i] - centre;
     const Eigen::Vector3d& n = moved_normals[i];
     const Eigen::Vector3d offset = target[j] - moved_source[i];
     const double along_normal = n.dot(offset);
     const bool has_normal = n.squaredNorm() > 0.5;  // estimated normals may be zero
-    if (has_normal && (offset - along_normal * n).norm() <= in_surface_tolerance_m)
+    if (has_normal && std::abs(along_normal) > max_normal_offset_m)
+      continue;
+    if (has_normal && (offset - along_normal * n).norm() <= tolerance_m)
     {
       Twist row;
       row << n, p.cross(n);
@@ -184,6 +215,15 @@ Eigen::Isometry3d refineSymmetricIcp(const std::vector<Eigen::Vector3d>& source,
                             ? std::pow(final_radius_m / start_radius_m, 1.0 / (options.max_iterations - 1))
                             : 1.0;
   const double length_scale_m = rmsRadius(source);
+  const double final_tolerance_m = std::min(options.in_surface_tolerance_m, options.final_in_surface_tolerance_m);
+  const double tolerance_shrink =
+      options.max_iterations > 1
+          ? std::pow(final_tolerance_m / options.in_surface_tolerance_m, 1.0 / (options.max_iterations - 1))
+          : 1.0;
+  double in_surface_tolerance_m = options.in_surface_tolerance_m;
+  double reverse_in_surface_tolerance_m = options.reverse_in_surface_tolerance_m > 0.0
+                                              ? options.reverse_in_surface_tolerance_m
+                                              : options.in_surface_tolerance_m;
   PointGrid target_grid(target, start_radius_m);
   double radius_m = start_radius_m;
   Eigen::Isometry3d current = start;
@@ -208,12 +248,16 @@ Eigen::Isometry3d refineSymmetricIcp(const std::vector<Eigen::Vector3d>& source,
     if (hybrid && !hybrid_now && have_previous && iteration == options.max_iterations - options.point_to_point_iterations)
       have_previous = false;  // the step changes nature: no extrapolation across
     const std::optional<Eigen::Isometry3d> step =
-        hybrid_now ? hybridStep(moved_source, moved_normals, target, pairs, options.in_surface_tolerance_m)
+        hybrid_now ? hybridStep(moved_source, moved_normals, target, pairs, in_surface_tolerance_m,
+                                reverse_in_surface_tolerance_m)
                : pointToPointStep(moved_source, target, pairs);
     if (!step)
       break;
     current = *step * current;
     radius_m = std::max(final_radius_m, radius_m * shrink);
+    in_surface_tolerance_m = std::max(final_tolerance_m, in_surface_tolerance_m * tolerance_shrink);
+    reverse_in_surface_tolerance_m = std::max(std::min(final_tolerance_m, reverse_in_surface_tolerance_m),
+                                              reverse_in_surface_tolerance_m * tolerance_shrink);
 
     const Eigen::AngleAxisd step_rotation(step->linear());
     if (step->translation().norm() < options.min_step_m && step_rotation.angle() < options.min_step_rad)
