@@ -2,6 +2,7 @@
 // geometry of a candidate on synthetic plates with exact truth.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include "brick_pose/roi/least_area_quad.h"
 #include "brick_pose/roi/oriented_bounding_box.h"
 #include "brick_pose/roi/plane_fit.h"
+#include "brick_pose/roi/plate_splitter.h"
 #include "brick_pose/roi/roi_filter.h"
 #include "brick_pose/segmentation/hsv_segmenter.h"
 #include "synthetic_plate_scene.h"
@@ -295,6 +297,40 @@ TEST(RoiFilter, EdgesCutByTheImageBorderAreTruncated)
       EXPECT_GT(std::min(c.corners_px[k].x(), c.corners_px[(k + 1) % 4].x()), 630.0);
     }
   EXPECT_EQ(truncated, 1);
+}
+
+TEST(PlateSplitter, SplitsWhereDepthSteps)
+{
+  // One colour blob: left part at 1.0 m, right part 0.2 m farther, with a
+  // flying pixel column in between, and a hole without depth.
+  const PinholeCamera camera = test::PlateScene::vgaCamera();
+  cv::Mat depth(camera.height_px, camera.width_px, CV_32FC1, cv::Scalar(1.0f));
+  depth(cv::Rect(200, 0, 440, 480)).setTo(1.2f);
+  depth(cv::Rect(200, 0, 1, 480)).setTo(1.1f);
+  depth(cv::Rect(120, 200, 3, 3)).setTo(std::numeric_limits<float>::quiet_NaN());
+  const RgbdFrame frame = makeRgbdFrame(cv::Mat(camera.height_px, camera.width_px, CV_8UC3, cv::Scalar::all(0)), depth,
+                                        camera, {});
+  Segment segment;
+  segment.type_name = "blue";
+  segment.bounding_box_px = cv::Rect(100, 150, 200, 100);
+  segment.mask = cv::Mat(segment.bounding_box_px.size(), CV_8UC1, cv::Scalar(255));
+  segment.area_px = 200 * 100;
+
+  const std::vector<Segment> parts = splitAtDepthSteps(frame, segment, 0.03, 400);
+  ASSERT_EQ(parts.size(), 2u);
+  EXPECT_EQ(parts[0].area_px, 100 * 100 - 9);  // left: x 100..199, minus the hole
+  EXPECT_EQ(parts[1].area_px, 99 * 100);       // right: x 201..299
+  EXPECT_EQ(parts[0].type_name, "blue");
+  for (const int index : parts[1].pixel_indices) EXPECT_GT(index % camera.width_px, 200);
+  EXPECT_TRUE(splitAtDepthSteps(frame, segment, 0.5, 400).empty()) << "one part when every step is allowed";
+}
+
+TEST(PlateSplitter, CountsPlatesSideBySide)
+{
+  EXPECT_EQ(sideBySideCount(0.20, 0.2), 1);
+  EXPECT_EQ(sideBySideCount(0.29, 0.2), 1);
+  EXPECT_EQ(sideBySideCount(0.41, 0.2), 2);
+  EXPECT_EQ(sideBySideCount(0.64, 0.2), 3);
 }
 
 TEST(RoiFilter, RejectsAnOversizedPlateWithAReason)

@@ -31,6 +31,7 @@ struct RoiFilterParams
   /// A segment failing the plane test is split where neighbouring depths
   /// step by more than this (D415 noise between neighbours at 2 m: ~1 cm).
   double max_depth_step_m = 0.03;
+  int min_part_area_px = 400;  ///< Smaller parts of a split (flying-pixel strips) are dropped.
   DimensionTolerance dimensions;  ///< Check of the quad's length/width and the OBB thickness.
   /// Colour-free segments get the type whose length and width are both
   /// within this distance (closest wins); they must be complete faces.

@@ -160,7 +160,7 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
   // Plates at two heights joined through an edge without a clean depth jump
   // give one bent "plane": split where the depth steps.
   if (parts.empty() && !measured && candidate.plane.valid && candidate.plane.rms_m > params_.max_plane_rms_m)
-    parts = splitAtDepthSteps(frame, segment, params_.max_depth_step_m, params_.min_points);
+    parts = splitAtDepthSteps(frame, segment, params_.max_depth_step_m, params_.min_part_area_px);
   if (parts.empty())
   {
     outcome.rejections.push_back(*reason);
