@@ -44,7 +44,8 @@ struct FrontEndParams
   /// candidates of one type on one plane (normals within merge_max_angle_deg,
   /// each centroid within merge_max_offset_m of the other's plane) are
   /// joined when the joined segment still passes ROI filtration (so two
-  /// different plates side by side are not).
+  /// different plates side by side are not). Pieces down to 15% of a plate
+  /// take part; the minimum visible fraction applies to the joined result.
   bool merge_face_pieces = true;
   double merge_max_angle_deg = 5.0;
   double merge_max_offset_m = 0.02;
@@ -98,6 +99,9 @@ public:
 private:
   /// Joins pieces of one face (see FrontEndParams::merge_face_pieces).
   void mergeFacePieces(const RgbdFrame& frame, FrontEndResult& result) const;
+  /// Drops (as rejections) candidates below RoiFilterParams' minimum visible
+  /// fraction once pieces are joined.
+  void dropSmallPieces(FrontEndResult& result) const;
 
   BrickCatalogue catalogue_;
   FrontEndParams params_;

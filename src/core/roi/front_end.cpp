@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 #include "brick_pose/common/errors.h"
 
@@ -41,6 +42,20 @@ Segment joinSegments(const BrickCandidate& a, const BrickCandidate& b)
   return joined;
 }
 
+/// Pieces of an occluded plate may each be shorter than the visible
+/// fraction the front end accepts, and only their union long enough: the ROI
+/// filter lets small pieces through, and the front end applies the real
+/// minimum after joining them.
+constexpr double kMinPieceFraction = 0.15;
+
+RoiFilterParams pieceFilterParams(const FrontEndParams& params)
+{
+  RoiFilterParams roi = params.roi;
+  if (params.merge_face_pieces)
+    roi.dimensions.min_visible_fraction = std::min(roi.dimensions.min_visible_fraction, kMinPieceFraction);
+  return roi;
+}
+
 const BrickCatalogue& nonEmpty(const BrickCatalogue& catalogue)
 {
   if (catalogue.empty()) throw ConfigError("front end: the brick catalogue is empty");
@@ -75,7 +90,7 @@ FrontEnd::FrontEnd(const BrickCatalogue& catalogue, const FrontEndParams& params
     params_(params),
     hsv_segmenter_(params.hsv),
     region_growing_segmenter_(params.region_growing),
-    roi_filter_(catalogue, params.roi, params.cloud)
+    roi_filter_(catalogue, pieceFilterParams(params), params.cloud)
 {
 }
 
@@ -98,7 +113,33 @@ void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>
       result.rejections.push_back({segment.type_name, segment.bounding_box_px, segment.area_px, std::move(reason)});
   }
   if (params_.merge_face_pieces) mergeFacePieces(frame, result);
+  dropSmallPieces(result);
   result.timings.roi_ms = millisecondsSince(roi_start) - (result.timings.cloud.total() - cloud_ms_before);
+}
+
+void FrontEnd::dropSmallPieces(FrontEndResult& result) const
+{
+  const DimensionTolerance& tolerance = params_.roi.dimensions;
+  auto& candidates = result.candidates;
+  for (auto it = candidates.begin(); it != candidates.end();)
+  {
+    const BrickType* type = catalogue_.find(it->type_name);
+    const double min_length_m = type ? tolerance.min_visible_fraction * type->length_m - tolerance.tolerance_m : 0.0;
+    const double min_width_m = type ? tolerance.min_visible_fraction * type->width_m - tolerance.tolerance_m : 0.0;
+    // The longer measured side may be the width of a short visible piece.
+    const double longer = std::max(it->length_m, it->width_m), shorter = std::min(it->length_m, it->width_m);
+    if (longer >= std::max(min_length_m, min_width_m) && shorter >= std::min(min_length_m, min_width_m))
+    {
+      ++it;
+      continue;
+    }
+    std::ostringstream reason;
+    reason.precision(3);
+    reason << it->type_name << ": visible part " << it->length_m << " x " << it->width_m
+           << " m is below the minimum visible fraction " << tolerance.min_visible_fraction;
+    result.rejections.push_back({it->type_name, it->bounding_box_px, it->area_px, reason.str()});
+    it = candidates.erase(it);
+  }
 }
 
 void FrontEnd::mergeFacePieces(const RgbdFrame& frame, FrontEndResult& result) const
