@@ -221,6 +221,10 @@ struct MeasurementError
   /// T1/T2 midpoint minus true centre in camera x and y (bias detection).
   double midpoint_camera_x_mm = std::nan("");
   double midpoint_camera_y_mm = std::nan("");
+  /// Area centroid of the segment's depth pixels, their rays cut with the
+  /// fitted plane, vs the true centre along the face (a candidate
+  /// replacement for the quad's centre; see maskAreaCentroid()).
+  double mask_area_centroid_in_plane_mm = std::nan("");
 };
 
 struct BrickRecord
@@ -330,7 +334,29 @@ double inPlaneMm(const Eigen::Vector3d& offset_m, const Eigen::Vector3d& unit_no
   return 1000.0 * (offset_m - unit_normal * unit_normal.dot(offset_m)).norm();
 }
 
-MeasurementError measurementErrorOf(const BrickCandidate& candidate, const sim::BrickTruth& truth)
+/// Centroid on the fitted plane of the area the segment's pixels cover. Each
+/// pixel's ray is cut with the plane (no depth noise) and weighted by the
+/// area it covers there, which grows as z^3 on a plane (z^2 for the solid
+/// angle, z again for the foreshortening), so far parts of an oblique face
+/// are not under-weighted as in a plain mean of the points.
+std::optional<Eigen::Vector3d> maskAreaCentroid(const BrickCandidate& candidate, const PinholeCamera& camera)
+{
+  Eigen::Vector3d weighted_sum = Eigen::Vector3d::Zero();
+  double weight_sum = 0.0;
+  for (const int pixel : candidate.pixel_indices)
+  {
+    Eigen::Vector3d hit_m;
+    if (!candidate.plane.intersectRay(camera.ray(pixel % camera.width_px, pixel / camera.width_px), hit_m)) continue;
+    const double area_weight = hit_m.z() * hit_m.z() * hit_m.z();
+    weighted_sum += area_weight * hit_m;
+    weight_sum += area_weight;
+  }
+  if (!(weight_sum > 0.0)) return std::nullopt;
+  return weighted_sum / weight_sum;
+}
+
+MeasurementError measurementErrorOf(const BrickCandidate& candidate, const sim::BrickTruth& truth,
+                                    const PinholeCamera& camera)
 {
   const Eigen::Vector3d true_x = truth.camera_T_brick.linear().col(0);
   const Eigen::Vector3d true_z = truth.camera_T_brick.linear().col(2);
@@ -348,6 +374,8 @@ MeasurementError measurementErrorOf(const BrickCandidate& candidate, const sim::
   error.point_centroid_in_plane_mm = inPlaneMm(candidate.plane.centroid_m - true_centre, true_z);
   error.midpoint_camera_x_mm = 1000.0 * midpoint_offset.x();
   error.midpoint_camera_y_mm = 1000.0 * midpoint_offset.y();
+  if (const auto area_centroid = maskAreaCentroid(candidate, camera))
+    error.mask_area_centroid_in_plane_mm = inPlaneMm(*area_centroid - true_centre, true_z);
   return error;
 }
 
@@ -530,7 +558,7 @@ void PoseBench::runFrame(int index, std::uint64_t base_seed, BenchResults& resul
     record.complete = candidate.complete;
     record.exclusion = exclusionReason(candidate, *truth, instance_taken[truth->instance_id]);
     instance_taken[truth->instance_id] = true;
-    record.measurement = measurementErrorOf(candidate, *truth);
+    record.measurement = measurementErrorOf(candidate, *truth, camera_);
     // Excluded bricks are not refined: ICP on them would double the run time
     // for numbers that are not reported.
     if (record.exclusion.empty())
@@ -749,6 +777,38 @@ std::string breakdownRows(const std::vector<BrickRecord>& bricks, GroupOf group)
   return rows.str();
 }
 
+/// The targets for the default refinement, each with what we measured.
+std::string targetChecklist(const MethodSummary& full, const MethodSummary& icp)
+{
+  struct Target
+  {
+    std::string name;
+    double measured;
+    double limit;
+    const char* unit;
+  };
+  const double speedup = percentile(icp.refinement_us, 0.5) / percentile(full.refinement_us, 0.5);
+  const std::vector<Target> targets = {
+      {"rotation error median", percentile(full.rotation_error_deg, 0.5), 0.2, "deg"},
+      {"translation error median", percentile(full.translation_error_mm, 0.5), 0.4, "mm"},
+      {"rotation error p95", percentile(full.rotation_error_deg, 0.95), 0.5, "deg"},
+      {"translation error p95", percentile(full.translation_error_mm, 0.95), 1.5, "mm"},
+      {"correction time median", percentile(full.refinement_us, 0.5), 10.0, "us"},
+      // ICP must take at least 100 times as long as the correction.
+      {"correction time / ICP time", 1.0 / speedup, 0.01, "(ratio)"},
+      {"rotation median vs ICP's", percentile(full.rotation_error_deg, 0.5), percentile(icp.rotation_error_deg, 0.5),
+       "deg"},
+      {"translation median vs ICP's", percentile(full.translation_error_mm, 0.5),
+       percentile(icp.translation_error_mm, 0.5), "mm"},
+  };
+  std::ostringstream out;
+  out << "## Targets (correction, full mode)\n\n| Target | measured | limit | verdict |\n|---|---|---|---|\n";
+  for (const Target& target : targets)
+    out << "| " << target.name << " | " << formatted("%.4g", target.measured) << " " << target.unit << " | <= "
+        << formatted("%.4g", target.limit) << " | " << (target.measured <= target.limit ? "met" : "MISSED") << " |\n";
+  return out.str();
+}
+
 std::string markdownTable(const BenchResults& results, const std::vector<MethodSummary>& summaries,
                           const RegistrationSummary& registration, const LatencySummary& latency,
                           const Options& options)
@@ -785,6 +845,8 @@ std::string markdownTable(const BenchResults& results, const std::vector<MethodS
   out << "\nICP / correction (full) median time: "
       << formatted("%.0f", percentile(icp.refinement_us, 0.5) / percentile(full.refinement_us, 0.5)) << "x.\n";
 
+  out << "\n" << targetChecklist(full, icp);
+
   out << "\n## Paper Table 1 next to ours (means over the counted bricks)\n\n"
          "| Algorithm | avg exec time (ms) | avg rot error (deg) | avg trans error (mm) |\n|---|---|---|---|\n"
          "| ICP (paper, MBZIRC data) | 12 | 1.3 | 1.8 |\n| Our approach (paper) | 0.21 | 0.2 | 0.4 |\n";
@@ -796,6 +858,9 @@ std::string markdownTable(const BenchResults& results, const std::vector<MethodS
         << formatted("%.3f", mean(summary.rotation_error_deg)) << " | "
         << formatted("%.3f", mean(summary.translation_error_mm)) << " |\n";
   }
+  out << "\nThe mean of a one-microsecond operation is dominated by the odd preemption on a shared machine; "
+         "the medians above are the robust figures. The paper's numbers come from real MBZIRC data, ours from "
+         "the synthetic rig.\n";
 
   out << "\n## Front-end measurements the correction works from (medians, counted bricks)\n\n"
       << "T1->T2 direction error " << formatted("%.3f", medianMeasurement(results.bricks, &MeasurementError::t1_t2_direction_deg))
@@ -806,6 +871,8 @@ std::string markdownTable(const BenchResults& results, const std::vector<MethodS
       << formatted("%.3f", medianMeasurement(results.bricks, &MeasurementError::plane_offset_mm))
       << " mm; mean of the segment points in-plane error "
       << formatted("%.3f", medianMeasurement(results.bricks, &MeasurementError::point_centroid_in_plane_mm))
+      << " mm; z^3-weighted area centroid of the segment's pixels on the plane "
+      << formatted("%.3f", medianMeasurement(results.bricks, &MeasurementError::mask_area_centroid_in_plane_mm))
       << " mm; measured length / width minus catalogue "
       << formatted("%.2f", medianMeasurement(results.bricks, &MeasurementError::length_error_mm)) << " / "
       << formatted("%.2f", medianMeasurement(results.bricks, &MeasurementError::width_error_mm)) << " mm.\n";
@@ -840,7 +907,7 @@ void writeCsv(const std::string& path, const std::vector<BrickRecord>& bricks)
   csv << "frame,scene_kind,lighting,type,instance,distance_m,visible_fraction,complete,counted,exclusion,"
          "super4pcs_ms,lcp_score,t1_t2_direction_error_deg,normal_error_deg,midpoint_in_plane_error_mm,"
          "plane_offset_mm,length_error_mm,width_error_mm,fill_ratio,point_centroid_in_plane_error_mm,"
-         "midpoint_camera_x_error_mm,midpoint_camera_y_error_mm,method,success,rotation_error_deg,translation_error_mm,refinement_us,failure\n";
+         "midpoint_camera_x_error_mm,midpoint_camera_y_error_mm,mask_area_centroid_in_plane_error_mm,method,success,rotation_error_deg,translation_error_mm,refinement_us,failure\n";
   csv.precision(6);
   for (const BrickRecord& record : bricks)
     for (std::size_t m = 0; m < kMethodCount; ++m)
@@ -854,7 +921,8 @@ void writeCsv(const std::string& path, const std::vector<BrickRecord>& bricks)
           << record.measurement.plane_offset_mm << ',' << record.measurement.length_error_mm << ','
           << record.measurement.width_error_mm << ',' << record.measurement.fill_ratio << ','
           << record.measurement.point_centroid_in_plane_mm << ',' << record.measurement.midpoint_camera_x_mm << ','
-          << record.measurement.midpoint_camera_y_mm << ',' << methodName(kMethods[m]) << ',' << outcome.success << ','
+          << record.measurement.midpoint_camera_y_mm << ',' << record.measurement.mask_area_centroid_in_plane_mm
+          << ',' << methodName(kMethods[m]) << ',' << outcome.success << ','
           << outcome.rotation_error_deg << ',' << outcome.translation_error_mm << ',' << outcome.refinement_us
           << ",\"" << (record.counted || record.registered ? failureGroup(outcome.failure) : "not evaluated") << "\"\n";
     }
