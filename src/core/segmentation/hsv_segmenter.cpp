@@ -91,9 +91,6 @@ void HsvSegmenter::cutAtDepthJumps(cv::Mat& mask, const cv::Mat& depth_m) const
   if (params_.depth_jump_m <= 0.0) return;
   const float jump = static_cast<float>(params_.depth_jump_m);
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  // Depth of the mask pixels, NaN elsewhere: one array to look at.
-  cv::Mat masked(mask.size(), CV_32FC1, cv::Scalar(nan));
-  depth_m.copyTo(masked, mask);
   const int rows = mask.rows, cols = mask.cols;
   auto differ = [jump](float a, float b) { return std::abs(a - b) > jump; };  // false when either is NaN
 
@@ -105,7 +102,7 @@ void HsvSegmenter::cutAtDepthJumps(cv::Mat& mask, const cv::Mat& depth_m) const
     {
       const int yy = y + step * dy, xx = x + step * dx;
       if (yy < 0 || xx < 0 || yy >= rows || xx >= cols || !mask.at<std::uint8_t>(yy, xx)) break;
-      const float z = masked.at<float>(yy, xx);
+      const float z = depth_m.at<float>(yy, xx);
       if (!std::isnan(z)) return z;
     }
     return nan;
@@ -119,9 +116,11 @@ void HsvSegmenter::cutAtDepthJumps(cv::Mat& mask, const cv::Mat& depth_m) const
   for (int y = 0; y < rows; ++y)
   {
     const std::uint8_t* mask_row = mask.ptr<std::uint8_t>(y);
-    const float* row = masked.ptr<float>(y);
-    const float* up = y > 0 ? masked.ptr<float>(y - 1) : nullptr;
-    const float* down = y + 1 < rows ? masked.ptr<float>(y + 1) : nullptr;
+    const std::uint8_t* mask_up = y > 0 ? mask.ptr<std::uint8_t>(y - 1) : nullptr;
+    const std::uint8_t* mask_down = y + 1 < rows ? mask.ptr<std::uint8_t>(y + 1) : nullptr;
+    const float* row = depth_m.ptr<float>(y);
+    const float* up = y > 0 ? depth_m.ptr<float>(y - 1) : nullptr;
+    const float* down = y + 1 < rows ? depth_m.ptr<float>(y + 1) : nullptr;
     for (int x = 0; x < cols; ++x)
     {
       if (!mask_row[x]) continue;
@@ -131,8 +130,9 @@ void HsvSegmenter::cutAtDepthJumps(cv::Mat& mask, const cv::Mat& depth_m) const
         at_jump = differ(firstValid(y, x, 0, -1), firstValid(y, x, 0, 1)) ||
                   differ(firstValid(y, x, -1, 0), firstValid(y, x, 1, 0));
       else
-        at_jump = (x + 1 < cols && differ(z, row[x + 1])) || (x > 0 && differ(z, row[x - 1])) ||
-                  (down && differ(z, down[x])) || (up && differ(z, up[x]));
+        at_jump = (x + 1 < cols && mask_row[x + 1] && differ(z, row[x + 1])) ||
+                  (x > 0 && mask_row[x - 1] && differ(z, row[x - 1])) ||
+                  (mask_down && mask_down[x] && differ(z, down[x])) || (mask_up && mask_up[x] && differ(z, up[x]));
       if (at_jump) cut.emplace_back(x, y);
     }
   }
