@@ -157,13 +157,22 @@ TEST(LeastAreaQuad, ChamferedRectangleReducesToTheRectangle)
   EXPECT_FALSE(reduceToLeastAreaQuad({{0, 0}, {1, 0}, {0, 1}}));
 }
 
+/// The masks of these tests are sampled at pixel centres, so their outline
+/// lies exactly half a pixel step inside the edges.
+QuadFitParams centreSampled()
+{
+  QuadFitParams params;
+  params.edge_offset_px = 0.5;
+  return params;
+}
+
 TEST(LeastAreaQuad, SubPixelCornersOfRotatedRectangle)
 {
   for (const double angle : {0.0, 0.2, 0.61, 1.1})
   {
     const auto truth = rotatedRectangle({200.3, 150.7}, 220.0, 80.0, angle);
     const cv::Mat mask = rasterise(truth, {400, 300});
-    const auto quad = fitLeastAreaQuad(largestOutline(mask));
+    const auto quad = fitLeastAreaQuad(largestOutline(mask), centreSampled());
     ASSERT_TRUE(quad);
     EXPECT_LT(worstCornerErrorPx(*quad, truth), 0.6) << "angle " << angle;
     EXPECT_GT(signedAreaPx(*quad), 0.0) << "clockwise on screen";
@@ -182,7 +191,7 @@ TEST(LeastAreaQuad, NotchedEdgeStillGivesTheFullRectangle)
                                               centre + 30 * along + 60 * across, centre - 30 * along + 60 * across};
   const cv::Mat mask = rasterise(truth, {420, 320}, notch);
   const std::vector<cv::Point> outline = largestOutline(mask);
-  const auto quad = fitLeastAreaQuad(outline);
+  const auto quad = fitLeastAreaQuad(outline, centreSampled());
   ASSERT_TRUE(quad);
   EXPECT_LT(worstCornerErrorPx(*quad, truth), 1.0);
 
@@ -191,7 +200,7 @@ TEST(LeastAreaQuad, NotchedEdgeStillGivesTheFullRectangle)
   const std::vector<Eigen::Vector2d> corner_notch = {truth[0] - 40 * along - 10 * across, truth[0] + 10 * along - 10 * across,
                                                      truth[0] + 10 * along + 25 * across, truth[0] - 40 * along + 25 * across};
   const cv::Mat cut = rasterise(truth, {420, 320}, corner_notch);
-  const auto cut_quad = fitLeastAreaQuad(largestOutline(cut));
+  const auto cut_quad = fitLeastAreaQuad(largestOutline(cut), centreSampled());
   ASSERT_TRUE(cut_quad);
   EXPECT_LT(worstCornerErrorPx(*cut_quad, truth), 1.0);
   std::vector<cv::Point> hull;
@@ -208,7 +217,14 @@ TEST(LeastAreaQuad, DiagonalIntersectionIsPerspectiveCentre)
 }
 
 /// Candidate of the scene's plate through HSV segmentation and the ROI filter.
-RoiResult filterScene(const test::PlateScene& scene, const RgbdFrame& frame, const RoiFilterParams& params = RoiFilterParams())
+RoiFilterParams centreSampledRoi()
+{
+  RoiFilterParams params;
+  params.quad = centreSampled();
+  return params;
+}
+
+RoiResult filterScene(const test::PlateScene& scene, const RgbdFrame& frame, const RoiFilterParams& params = centreSampledRoi())
 {
   const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
   const std::vector<Segment> segments = HsvSegmenter().segment(frame, catalogue);
@@ -364,7 +380,7 @@ TEST(RoiFilter, UpDirectionRejectsSideFaces)
   scene.camera = test::PlateScene::vgaCamera();
   scene.rotation = test::PlateScene::facingCamera(0.1, 0.6);
   const RgbdFrame frame = scene.frame();
-  RoiFilterParams params;
+  RoiFilterParams params = centreSampledRoi();
   params.up_direction = Eigen::Vector3d(0.0, -1.0, 0.0);  // camera looking horizontally, y down
   const RoiResult result = filterScene(scene, frame, params);
   ASSERT_TRUE(std::holds_alternative<std::string>(result));
