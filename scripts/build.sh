@@ -24,7 +24,7 @@ echo "brick_pose: building (Release, -j$jobs; log in ws/build.log)"
 start=$(date +%s)
 if ! catkin_make -j"$jobs" -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \
   -DCATKIN_ENABLE_TESTING=ON "$@" >"$log" 2>&1; then
-  grep -n -E "error|Error" "$log" | head -40
+  grep -n -i -E "error|exception" "$log" | head -40
   tail -20 "$log"
   echo "brick_pose: build FAILED (full log: ws/build.log)" >&2
   exit 1

@@ -13,6 +13,7 @@
 #include <mutex>
 #include <sstream>
 
+#include <dynamic_reconfigure/server.h>
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/ros.h>
@@ -24,6 +25,7 @@
 
 #include "brick_pose/BrickDetectionArray.h"
 #include "brick_pose/GetBrickPose.h"
+#include "brick_pose/PoseCorrectionConfig.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/pose/brick_selection.h"
 #include "brick_pose/pose/pipeline_config.h"
@@ -83,7 +85,8 @@ private:
     const ParamLookup lookup = rosParamLookup(private_node, node);
     try
     {
-      estimator_ = std::make_unique<BrickPoseEstimator>(catalogueFrom(lookup), estimatorParamsFrom(lookup));
+      catalogue_ = catalogueFrom(lookup);
+      estimator_ = std::make_unique<BrickPoseEstimator>(catalogue_, estimatorParamsFrom(lookup));
     }
     catch (const ConfigError& e)
     {
@@ -98,8 +101,41 @@ private:
     // The service runs on the multi-threaded queue: it only reads the latest
     // detections, so it answers while the pipeline is busy with a frame.
     service_ = getMTNodeHandle().advertiseService("get_brick_pose", &PoseCorrectionNodelet::onGetBrickPose, this);
-    NODELET_INFO("refinement %s (correction mode %s); service %s", toString(estimator_->params().refinement),
-                 toString(estimator_->params().correction.mode), service_.getService().c_str());
+    NODELET_INFO("service %s", service_.getService().c_str());
+    startReconfigure();
+  }
+
+  /// Refinement method and correction mode are switched live; the server
+  /// starts from the values loaded above, not from the .cfg defaults.
+  void startReconfigure()
+  {
+    reconfigure_ = std::make_unique<dynamic_reconfigure::Server<PoseCorrectionConfig>>(getPrivateNodeHandle());
+    const BrickPoseEstimatorParams& params = estimator_->params();
+    PoseCorrectionConfig config;
+    config.refinement = toString(params.refinement);
+    config.correction_mode = toString(params.correction.mode);
+    config.icp_max_correspondence_m = params.icp.max_correspondence_distance_m;
+    config.icp_max_iterations = params.icp.max_iterations;
+    reconfigure_->updateConfig(config);
+    reconfigure_->setCallback([this](const PoseCorrectionConfig& update, std::uint32_t) { reconfigure(update); });
+  }
+
+  void reconfigure(const PoseCorrectionConfig& config)
+  {
+    BrickPoseEstimatorParams params = estimator_->params();
+    try
+    {
+      params.refinement = parseRefinementMethod(config.refinement);
+      params.correction.mode = parseCorrectionMode(config.correction_mode);
+      params.icp.max_correspondence_distance_m = config.icp_max_correspondence_m;
+      params.icp.max_iterations = config.icp_max_iterations;
+      estimator_ = std::make_unique<BrickPoseEstimator>(catalogue_, params);
+      NODELET_INFO("refinement %s (correction mode %s)", toString(params.refinement), toString(params.correction.mode));
+    }
+    catch (const ConfigError& e)
+    {
+      NODELET_ERROR("reconfigure rejected, keeping the previous parameters: %s", e.what());
+    }
   }
 
   void onRegistrations(const RegistrationsMessageConstPtr& registrations)
@@ -199,7 +235,7 @@ private:
     }
     detections_publisher_.publish(BrickDetectionArrayConstPtr(detections));
     if (markers_publisher_.getNumSubscribers() > 0)
-      markers_publisher_.publish(makeBrickMarkers(*detections, estimator_->catalogue()));
+      markers_publisher_.publish(makeBrickMarkers(*detections, catalogue_));
     NODELET_DEBUG("frame %.3f: %zu bricks, front end %.1f ms, registration %.1f ms, refinement %.3f ms, latency %.1f ms",
                   detections->header.stamp.toSec(), detections->detections.size(), detections->frontend_ms,
                   detections->registration_ms, detections->refinement_ms, detections->latency_ms);
@@ -242,8 +278,8 @@ private:
   void answer(const GetBrickPose::Request& request, GetBrickPose::Response& response) const
   {
     const SelectionPolicy policy = parseSelectionPolicy(request.policy);
-    if (!request.type.empty() && estimator_->catalogue().find(request.type) == nullptr)
-      throw InputError("unknown brick type '" + request.type + "' (known: " + estimator_->catalogue().namesJoined() + ")");
+    if (!request.type.empty() && catalogue_.find(request.type) == nullptr)
+      throw InputError("unknown brick type '" + request.type + "' (known: " + catalogue_.namesJoined() + ")");
     BrickDetectionArrayConstPtr detections;
     {
       std::lock_guard<std::mutex> lock(latest_mutex_);
@@ -310,7 +346,12 @@ private:
     response.message = "ok: " + detection.frame + (detection.pickable ? " (pickable)" : " (covered)");
   }
 
+  // The service thread reads only catalogue_ (never replaced) and latest_.
+  BrickCatalogue catalogue_;
+  // Replaced whole on reconfigure, on the same single-threaded queue as the
+  // registrations callback that uses it.
   std::unique_ptr<BrickPoseEstimator> estimator_;
+  std::unique_ptr<dynamic_reconfigure::Server<PoseCorrectionConfig>> reconfigure_;
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   tf2_ros::TransformBroadcaster broadcaster_;

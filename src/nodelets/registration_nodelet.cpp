@@ -2,12 +2,15 @@
 // model (the top face of its catalogue type, origin at its centre) onto the
 // segment with our Super4PCS; publishes the poses on `registrations`,
 // in-process. A candidate Super4PCS cannot register is dropped with a
-// throttled warning; the frame goes on with the others.
+// throttled warning; the frame goes on with the others. Overlap, delta,
+// sample size and the time budget are dynamic_reconfigure parameters.
 
+#include <dynamic_reconfigure/server.h>
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/ros.h>
 
+#include "brick_pose/RegistrationConfig.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/pose/pipeline_config.h"
 #include "brick_pose/ros/param_lookup.h"
@@ -24,7 +27,8 @@ private:
     const ParamLookup lookup = rosParamLookup(getPrivateNodeHandle(), node);
     try
     {
-      estimator_ = std::make_unique<BrickPoseEstimator>(catalogueFrom(lookup), estimatorParamsFrom(lookup));
+      catalogue_ = catalogueFrom(lookup);
+      estimator_ = std::make_unique<BrickPoseEstimator>(catalogue_, estimatorParamsFrom(lookup));
     }
     catch (const ConfigError& e)
     {
@@ -33,9 +37,41 @@ private:
     }
     registrations_publisher_ = node.advertise<RegistrationsMessage>("registrations", 2);
     candidates_subscriber_ = node.subscribe("candidates", 2, &RegistrationNodelet::onCandidates, this);
+    startReconfigure();
+  }
+
+  /// Super4PCS's accuracy and budget are tuned live; the server starts from
+  /// the values loaded above, not from the .cfg defaults.
+  void startReconfigure()
+  {
+    reconfigure_ = std::make_unique<dynamic_reconfigure::Server<RegistrationConfig>>(getPrivateNodeHandle());
     const auto& params = estimator_->params().super4pcs;
-    NODELET_INFO("Super4PCS: overlap %.2f, delta %.1f mm, %d samples, budget %.0f ms", params.overlap,
-                 params.delta_m * 1e3, params.sample_size, params.max_time_s * 1e3);
+    RegistrationConfig config;
+    config.overlap = params.overlap;
+    config.delta_m = params.delta_m;
+    config.sample_size = params.sample_size;
+    config.max_time_s = params.max_time_s;
+    reconfigure_->updateConfig(config);
+    reconfigure_->setCallback([this](const RegistrationConfig& update, std::uint32_t) { reconfigure(update); });
+  }
+
+  void reconfigure(const RegistrationConfig& config)
+  {
+    BrickPoseEstimatorParams params = estimator_->params();
+    params.super4pcs.overlap = config.overlap;
+    params.super4pcs.delta_m = config.delta_m;
+    params.super4pcs.sample_size = config.sample_size;
+    params.super4pcs.max_time_s = config.max_time_s;
+    try
+    {
+      estimator_ = std::make_unique<BrickPoseEstimator>(catalogue_, params);
+      NODELET_INFO("Super4PCS: overlap %.2f, delta %.1f mm, %d samples, budget %.0f ms", params.super4pcs.overlap,
+                   params.super4pcs.delta_m * 1e3, params.super4pcs.sample_size, params.super4pcs.max_time_s * 1e3);
+    }
+    catch (const ConfigError& e)
+    {
+      NODELET_ERROR("reconfigure rejected, keeping the previous parameters: %s", e.what());
+    }
   }
 
   void onCandidates(const CandidatesMessageConstPtr& candidates)
@@ -61,7 +97,11 @@ private:
     registrations_publisher_.publish(RegistrationsMessageConstPtr(message));
   }
 
+  BrickCatalogue catalogue_;
+  // Replaced whole on reconfigure; the subscriber and the reconfigure server
+  // share the nodelet's single-threaded queue, so no lock is needed.
   std::unique_ptr<BrickPoseEstimator> estimator_;
+  std::unique_ptr<dynamic_reconfigure::Server<RegistrationConfig>> reconfigure_;
   ros::Subscriber candidates_subscriber_;
   ros::Publisher registrations_publisher_;
 };
