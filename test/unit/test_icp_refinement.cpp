@@ -96,7 +96,10 @@ TEST(IcpRefinement, ImprovesAPoseOffByAFewDegreesAndMillimetres)
   for (unsigned seed = 1; seed <= seeds; ++seed)
   {
     const pcl::PointCloud<pcl::PointXYZ> cloud = noisyFaceCloud(truth, brick, 4000, 1e-3, seed);
-    const IcpRefinement result = refinePoseWithIcp(initial, brick, cloud);
+    // All 4000 points take part, so that the fitness bound below holds.
+    IcpParameters parameters;
+    parameters.max_target_points = 4000;
+    const IcpRefinement result = refinePoseWithIcp(initial, brick, cloud, parameters);
     ASSERT_TRUE(result.converged) << seed;
     const double rotation_after_deg = rotationErrorDeg(result.refined_pose, truth);
     const double translation_after_m = translationErrorM(result.refined_pose, truth);
@@ -114,6 +117,20 @@ TEST(IcpRefinement, ImprovesAPoseOffByAFewDegreesAndMillimetres)
   EXPECT_LT(translation_after_sum_m / seeds, 0.4 * translation_before_m);
   RecordProperty("mean_rotation_after_mdeg", static_cast<int>(1e3 * rotation_after_sum_deg / seeds));
   RecordProperty("mean_translation_after_um", static_cast<int>(1e6 * translation_after_sum_m / seeds));
+}
+
+TEST(IcpRefinement, ThinsADenseSegmentAndStillImproves)
+{
+  const BrickType brick = BrickCatalogue::mbzirc2020().at("red");
+  const Eigen::Isometry3d truth = truePose();
+  const Eigen::Isometry3d initial =
+      makePose(truth.linear() * rotAbout(Eigen::Vector3d::UnitZ(), 3.0), truth.translation() + Eigen::Vector3d(3e-3, -2e-3, 0.0));
+  // 20000 points, ten times what ICP keeps by default.
+  const pcl::PointCloud<pcl::PointXYZ> cloud = noisyFaceCloud(truth, brick, 20000, 1e-3, 7);
+  const IcpRefinement result = refinePoseWithIcp(initial, brick, cloud);
+  ASSERT_TRUE(result.converged);
+  EXPECT_LT(rotationErrorDeg(result.refined_pose, truth), 0.5 * rotationErrorDeg(initial, truth));
+  EXPECT_LT(translationErrorM(result.refined_pose, truth), 0.7 * translationErrorM(initial, truth));
 }
 
 TEST(IcpRefinement, NaNPointsInTheSegmentAreIgnored)

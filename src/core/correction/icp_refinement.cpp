@@ -64,6 +64,19 @@ void IcpParameters::validate() const
     throw ConfigError("icp: relative_fitness_epsilon must be finite and not negative");
   if (!isPositiveFinite(model_spacing_m))
     throw ConfigError("icp: model_spacing_m must be positive");
+  if (max_target_points < 3) throw ConfigError("icp: max_target_points must be >= 3");
+}
+
+/// At most about `max_points` of `cloud`, taken at a fixed stride. The
+/// segment is an organised scan, so a stride spreads the kept points evenly.
+Cloud::Ptr everyNth(const Cloud& cloud, int max_points)
+{
+  const std::size_t stride = (cloud.size() + max_points - 1) / static_cast<std::size_t>(max_points);
+  if (stride <= 1) return Cloud::Ptr(new Cloud(cloud));
+  Cloud::Ptr kept(new Cloud);
+  for (std::size_t i = 0; i < cloud.size(); i += stride)
+    kept->push_back(cloud[i]);
+  return kept;
 }
 
 IcpRefinement refinePoseWithIcp(const Eigen::Isometry3d& initial_pose, const BrickType& brick,
@@ -84,7 +97,7 @@ IcpRefinement refinePoseWithIcp(const Eigen::Isometry3d& initial_pose, const Bri
 
   pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ> icp;
   icp.setInputSource(sampleTopFace(brick, parameters.model_spacing_m));
-  icp.setInputTarget(target);
+  icp.setInputTarget(everyNth(*target, parameters.max_target_points));
   icp.setMaxCorrespondenceDistance(parameters.max_correspondence_distance_m);
   icp.setMaximumIterations(parameters.max_iterations);
   icp.setTransformationEpsilon(parameters.transformation_epsilon_m2);
