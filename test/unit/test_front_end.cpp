@@ -151,6 +151,17 @@ TEST(FrontEnd, ModeNamesAndConfigErrors)
   EXPECT_EQ(toString(SegmentationMode::kRegionGrowing), "region_growing");
   EXPECT_THROW(parseSegmentationMode("colour"), ConfigError);
   EXPECT_THROW(FrontEnd{BrickCatalogue()}, ConfigError);
+  FrontEndParams params;
+  params.roi.dimensions.min_visible_fraction = 1.5;
+  try
+  {
+    FrontEnd front_end(BrickCatalogue::mbzirc2020(), params);
+    FAIL() << "expected ConfigError";
+  }
+  catch (const ConfigError& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("min_visible_fraction"), std::string::npos) << error.what();
+  }
 }
 }  // namespace
 }  // namespace brick_pose

@@ -50,6 +50,8 @@ struct RoiFilterParams
   double max_tilt_deg = 30.0;
   PlaneFitParams plane;
   QuadFitParams quad;
+
+  void validate() const;  ///< Throws ConfigError naming the field.
 };
 
 /// Either a candidate or the reason the segment was dropped.
@@ -65,6 +67,7 @@ struct RoiOutcome
 class RoiFilter
 {
 public:
+  /// Throws ConfigError for a bad parameter.
   RoiFilter(const BrickCatalogue& catalogue, const RoiFilterParams& params, const CloudProcessorParams& cloud_params);
 
   /// Filters one segment. HSV segments are checked against their type;

@@ -7,6 +7,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "brick_pose/common/errors.h"
 #include "brick_pose/frame/organized_cloud.h"
 #include "brick_pose/roi/plate_splitter.h"
 
@@ -120,10 +121,35 @@ int longEdgeStart(const QuadCorners& corners_px, const std::array<Eigen::Vector3
 }
 }  // namespace
 
+void RoiFilterParams::validate() const
+{
+  auto require = [](bool condition, const char* field, const char* rule) {
+    if (!condition) throw ConfigError(std::string("roi filter: ") + field + " " + rule);
+  };
+  require(min_points >= 3, "min_points", "must be >= 3");
+  require(max_points >= 0, "max_points", "must be >= 0 (0 keeps every pixel)");
+  require(max_plane_rms_m > 0.0, "max_plane_rms_m", "must be > 0");
+  require(max_depth_step_m > 0.0, "max_depth_step_m", "must be > 0");
+  require(min_part_area_px >= 1, "min_part_area_px", "must be >= 1");
+  require(dimensions.tolerance_m >= 0.0, "dimensions.tolerance_m", "must be >= 0");
+  require(dimensions.max_thickness_m >= 0.0, "dimensions.max_thickness_m", "must be >= 0");
+  require(dimensions.min_visible_fraction > 0.0 && dimensions.min_visible_fraction <= 1.0,
+          "dimensions.min_visible_fraction", "must be in (0, 1]");
+  require(classification_tolerance_m >= 0.0, "classification_tolerance_m", "must be >= 0");
+  require(min_fill_ratio >= 0.0 && min_fill_ratio <= 1.0, "min_fill_ratio", "must be in [0, 1]");
+  require(std::isfinite(up_direction.norm()), "up_direction", "must be finite");
+  require(max_tilt_deg > 0.0 && max_tilt_deg <= 90.0, "max_tilt_deg", "must be in (0, 90]");
+  require(edge_probe_offset_px > 0.0, "edge_probe_offset_px", "must be > 0");
+  require(occluder_margin_m > 0.0, "occluder_margin_m", "must be > 0");
+  require(quad.side_band_px > 0.0, "quad.side_band_px", "must be > 0");
+  require(quad.min_side_points >= 2, "quad.min_side_points", "must be >= 2");
+}
+
 RoiFilter::RoiFilter(const BrickCatalogue& catalogue, const RoiFilterParams& params,
                      const CloudProcessorParams& cloud_params)
   : catalogue_(catalogue), params_(params), cloud_processor_(cloud_params)
 {
+  params_.validate();
 }
 
 RoiResult RoiFilter::filter(const RgbdFrame& frame, const Segment& segment, CloudProcessingTimings* cloud_timings) const
