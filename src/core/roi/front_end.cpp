@@ -50,6 +50,7 @@ constexpr double kMinPieceFraction = 0.15;
 
 RoiFilterParams pieceFilterParams(const FrontEndParams& params)
 {
+  params.roi.validate();  // as configured, before the piece threshold replaces one value
   RoiFilterParams roi = params.roi;
   if (params.merge_face_pieces)
     roi.dimensions.min_visible_fraction = std::min(roi.dimensions.min_visible_fraction, kMinPieceFraction);
