@@ -35,6 +35,7 @@ private:
       NODELET_ERROR("registration not started: %s", e.what());
       return;
     }
+    getPrivateNodeHandle().param("max_frame_registration_ms", max_frame_registration_ms_, 400.0);
     registrations_publisher_ = node.advertise<RegistrationsMessage>("registrations", 2);
     candidates_subscriber_ = node.subscribe("candidates", 2, &RegistrationNodelet::onCandidates, this);
     startReconfigure();
@@ -83,6 +84,16 @@ private:
     const auto& list = candidates->front_end.candidates;
     for (std::size_t i = 0; i < list.size(); ++i)
     {
+      // Each brick has Super4PCS's own budget; the frame has this one, so a
+      // pile of bricks cannot hold the pipeline up.
+      const double spent_ms = (ros::WallTime::now() - start).toSec() * 1e3;
+      if (spent_ms > max_frame_registration_ms_)
+      {
+        NODELET_WARN_THROTTLE(2.0, "frame %.3f: registration budget of %.0f ms spent, %zu of %zu candidates skipped",
+                              candidates->header.stamp.toSec(), max_frame_registration_ms_, list.size() - i,
+                              list.size());
+        break;
+      }
       try
       {
         message->registered.push_back({i, estimator_->registerCandidate(list[i])});
@@ -98,6 +109,7 @@ private:
   }
 
   BrickCatalogue catalogue_;
+  double max_frame_registration_ms_ = 400.0;
   // Replaced whole on reconfigure; the subscriber and the reconfigure server
   // share the nodelet's single-threaded queue, so no lock is needed.
   std::unique_ptr<BrickPoseEstimator> estimator_;

@@ -34,6 +34,7 @@ private:
       NODELET_ERROR("ROI filter not started: %s", e.what());
       return;
     }
+    getPrivateNodeHandle().param("max_roi_ms", max_roi_ms_, 200.0);
     candidates_publisher_ = node.advertise<CandidatesMessage>("candidates", 2);
     debug_image_publisher_ = node.advertise<sensor_msgs::Image>("debug_image", 1);
     segments_subscriber_ = node.subscribe("segments", 2, &RoiFilterNodelet::onSegments, this);
@@ -58,6 +59,12 @@ private:
       return;
     }
     const double roi_ms = (ros::WallTime::now() - start).toSec() * 1e3;
+    if (roi_ms > max_roi_ms_)
+    {
+      NODELET_WARN_THROTTLE(2.0, "dropping frame %.3f: ROI filtration took %.0f ms, over its %.0f ms budget",
+                            segments->header.stamp.toSec(), roi_ms, max_roi_ms_);
+      return;
+    }
     message->front_end.timings.total_ms = segments->segmentation_ms + roi_ms;
     for (const Rejection& rejection : message->front_end.rejections)
       NODELET_DEBUG("frame %.3f: dropped %s segment of %d px at (%d, %d): %s", segments->header.stamp.toSec(),
@@ -74,6 +81,7 @@ private:
   }
 
   std::unique_ptr<FrontEnd> front_end_;
+  double max_roi_ms_ = 200.0;
   ros::Subscriber segments_subscriber_;
   ros::Publisher candidates_publisher_;
   ros::Publisher debug_image_publisher_;
