@@ -1,0 +1,417 @@
+// Registration benchmark: our Super4PCS against PCL 1.13's FPCS, KFPCS and
+// ICP-from-identity, on segmented brick top faces from the synthetic D415.
+//
+//   bench_registration [--frames N] [--seed S] [--pcl-time S] [--min-visible F]
+//                      [--verbose] [--only-ours]
+//
+// Each frame is a seeded single-brick scene (any catalogue type, camera
+// 0.5-2 m away) rendered by sim::SyntheticRig with its D415 noise model. The
+// segment is the top-face pixels of the brick in the rig's instance and face
+// label images, back-projected from the *noisy* depth (holes skipped, flying
+// pixels at the edges kept), then evenly downsampled to at most 2000 points.
+// Faces less than 95 % visible (--min-visible) or with fewer than 1000 points
+// are skipped (and counted): a face cut by the image border or occluded is
+// ambiguous along the cut for any method that sees only the segment. Every method registers the brick's top-face model (1 cm
+// grid, normals +z) onto the same segment; the segment has no normals.
+//
+// Success: rotation error < 5 deg and translation error < 10 mm, with the
+// estimate first canonicalised (brick z towards the camera, which a face
+// without normals cannot tell) and the error taken modulo the half turn about
+// the face normal. Prints a markdown table and, on its own line, one JSON
+// object.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "brick_pose/camera/pinhole_camera.h"
+#include "brick_pose/catalogue/brick_catalogue.h"
+#include "brick_pose/common/errors.h"
+#include "brick_pose/registration/brick_symmetry.h"
+#include "brick_pose/registration/model_cloud.h"
+#include "brick_pose/registration/pcl_baselines.h"
+#include "brick_pose/registration/super4pcs.h"
+#include "brick_pose/registration/uniform_sampling.h"
+#include "brick_pose/sim/scene_generator.h"
+#include "brick_pose/sim/synthetic_rig.h"
+
+using namespace brick_pose;
+using namespace brick_pose::registration;
+
+namespace
+{
+constexpr int kMinSegmentPoints = 1000;
+constexpr int kMaxSegmentPoints = 2000;
+constexpr double kSuccessRotationDeg = 5.0;
+constexpr double kSuccessTranslationM = 0.010;
+
+struct Options
+{
+  int frames = 200;
+  std::uint64_t seed = 1;
+  int pcl_time_s = 1;
+  /// Faces cut by the image border or occluded are ambiguous along the cut
+  /// for any registration that sees only the segment; by default only faces
+  /// seen whole take part.
+  double min_visible_fraction = 0.95;
+  bool verbose = false;  ///< one line per face and method on stderr
+  bool only_ours = false;  ///< skip the PCL baselines (quick tuning runs)
+};
+
+Options parseOptions(int argc, char** argv)
+{
+  Options options;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc)
+        throw ConfigError(arg + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--frames")
+      options.frames = std::stoi(value());
+    else if (arg == "--seed")
+      options.seed = std::stoull(value());
+    else if (arg == "--pcl-time")
+      options.pcl_time_s = std::stoi(value());
+    else if (arg == "--min-visible")
+      options.min_visible_fraction = std::stod(value());
+    else if (arg == "--verbose")
+      options.verbose = true;
+    else if (arg == "--only-ours")
+      options.only_ours = true;
+    else if (arg == "--help" || arg == "-h")
+    {
+      std::cout << "usage: bench_registration [--frames N (200)] [--seed S (1)] [--pcl-time S (1)]\n"
+                   "                          [--min-visible F (0.95)] [--verbose] [--only-ours]\n";
+      std::exit(0);
+    }
+    else
+      throw ConfigError("unknown argument " + arg);
+  }
+  if (options.frames < 1 || options.pcl_time_s < 1)
+    throw ConfigError("--frames and --pcl-time must be at least 1");
+  return options;
+}
+
+/// One registration problem: a segmented top face and its ground truth.
+struct FaceSample
+{
+  BrickType type;
+  PointSet segment;  ///< camera frame
+  Eigen::Isometry3d camera_T_brick = Eigen::Isometry3d::Identity();
+  double distance_m = 0.0;
+};
+
+/// Makes the face samples. Kept behind this one function so that another
+/// source of segments (e.g. recorded data) can replace the rig.
+class RigFaceSource
+{
+public:
+  RigFaceSource(std::uint64_t seed, double min_visible_fraction)
+    : min_visible_fraction_(min_visible_fraction),
+      catalogue_(BrickCatalogue::mbzirc2020()),
+      camera_(PinholeCamera::d415Color1280x720()),
+      generator_(catalogue_, sceneParams()),
+      rig_(camera_, sim::SensorModel()),
+      next_seed_(seed)
+  {
+  }
+
+  /// The next usable face; `skipped` counts the frames passed over.
+  FaceSample next(int& skipped)
+  {
+    for (;;)
+    {
+      const std::uint64_t seed = next_seed_++;
+      const sim::Scene scene = generator_.generate(seed);
+      const sim::SyntheticFrame frame = rig_.render(scene, seed);
+      if (frame.truth.empty() || frame.truth[0].visible_fraction < min_visible_fraction_)
+      {
+        ++skipped;
+        continue;
+      }
+      FaceSample sample;
+      sample.type = scene.bricks[0].type;
+      sample.camera_T_brick = frame.truth[0].camera_T_brick;
+      sample.distance_m = sample.camera_T_brick.translation().norm();
+      const PointSet all = topFacePoints(frame, frame.truth[0].instance_id);
+      if (static_cast<int>(all.size()) < kMinSegmentPoints)
+      {
+        ++skipped;
+        continue;
+      }
+      std::mt19937_64 rng(seed);
+      sample.segment = all.subset(uniformSubsample(all.points, kMaxSegmentPoints, rng));
+      return sample;
+    }
+  }
+
+private:
+  static sim::SceneParams sceneParams()
+  {
+    sim::SceneParams params;
+    params.kind = sim::SceneKind::kSingle;
+    params.min_distance_m = 0.5;
+    params.max_distance_m = 2.0;
+    return params;
+  }
+
+  /// Top-face pixels of one brick, back-projected from the noisy depth.
+  PointSet topFacePoints(const sim::SyntheticFrame& frame, int instance_id) const
+  {
+    PointSet points;
+    for (int v = 0; v < frame.instance_labels.rows; ++v)
+      for (int u = 0; u < frame.instance_labels.cols; ++u)
+      {
+        if (frame.instance_labels.at<std::uint16_t>(v, u) != instance_id ||
+            frame.face_labels.at<std::uint8_t>(v, u) != static_cast<std::uint8_t>(sim::CuboidFace::kTop))
+          continue;
+        const std::uint16_t depth_mm = frame.depth_mm.at<std::uint16_t>(v, u);
+        if (depth_mm == 0)
+          continue;
+        points.points.push_back(frame.camera.backProject(u, v, 1e-3 * depth_mm));
+      }
+    return points;
+  }
+
+  double min_visible_fraction_;
+  BrickCatalogue catalogue_;
+  PinholeCamera camera_;
+  sim::SceneGenerator generator_;
+  sim::SyntheticRig rig_;
+  std::uint64_t next_seed_;
+};
+
+/// CPU time of the calling thread: unlike wall time it does not grow when
+/// other processes share the cores.
+double threadCpuSeconds()
+{
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return now.tv_sec + 1e-9 * now.tv_nsec;
+}
+
+struct Outcome
+{
+  double time_ms = 0.0;
+  double cpu_ms = 0.0;
+  double rotation_deg = 0.0;
+  double translation_mm = 0.0;
+  bool success = false;
+};
+
+struct MethodStats
+{
+  std::string name;
+  std::string json_key;
+  std::vector<Outcome> outcomes;
+};
+
+double quantile(std::vector<double> values, double q)
+{
+  if (values.empty())
+    return std::nan("");
+  std::sort(values.begin(), values.end());
+  const double position = q * (values.size() - 1);
+  const std::size_t low = static_cast<std::size_t>(std::floor(position));
+  const std::size_t high = std::min(values.size() - 1, low + 1);
+  return values[low] + (position - low) * (values[high] - values[low]);
+}
+
+Outcome judge(const RegistrationResult& result, const Eigen::Isometry3d& truth)
+{
+  Outcome outcome;
+  outcome.time_ms = result.elapsed_s * 1e3;
+  const Eigen::Isometry3d estimate = canonicalisePose(result.source_to_target, ModelSymmetry::kRectangle);
+  const PoseError error = poseErrorModuloSymmetry(estimate, truth, ModelSymmetry::kHalfTurnZ);
+  outcome.rotation_deg = error.rotation_deg;
+  outcome.translation_mm = error.translation_mm();
+  outcome.success = error.rotation_deg < kSuccessRotationDeg && error.translation_m < kSuccessTranslationM;
+  return outcome;
+}
+
+struct Summary
+{
+  double median_ms, p95_ms, median_cpu_ms, p95_cpu_ms, success, median_rotation_deg, median_translation_mm;
+};
+
+Summary summarise(const MethodStats& stats)
+{
+  std::vector<double> times, cpu_times, rotations, translations;
+  int successes = 0;
+  for (const Outcome& o : stats.outcomes)
+  {
+    times.push_back(o.time_ms);
+    cpu_times.push_back(o.cpu_ms);
+    rotations.push_back(o.rotation_deg);
+    translations.push_back(o.translation_mm);
+    successes += o.success ? 1 : 0;
+  }
+  return {quantile(times, 0.5), quantile(times, 0.95), quantile(cpu_times, 0.5), quantile(cpu_times, 0.95),
+          stats.outcomes.empty() ? 0.0 : static_cast<double>(successes) / stats.outcomes.size(),
+          quantile(rotations, 0.5), quantile(translations, 0.5)};
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  Options options;
+  try
+  {
+    options = parseOptions(argc, argv);
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "bench_registration: " << e.what() << "\n";
+    return 2;
+  }
+
+  RigFaceSource faces(options.seed, options.min_visible_fraction);
+  std::map<std::string, PointSet> models;
+  MethodStats ours{"Super4PCS (ours)", "s4pcs", {}};
+  MethodStats fpcs{"PCL FPCS", "pcl_fpcs", {}};
+  MethodStats kfpcs{"PCL KFPCS", "pcl_kfpcs", {}};
+  MethodStats icp{"PCL ICP from identity", "pcl_icp", {}};
+  std::map<std::string, MethodStats> ours_by_type;
+  int skipped = 0;
+  int input_errors = 0;
+  std::vector<double> segment_sizes;
+
+  for (int frame = 0; frame < options.frames; ++frame)
+  {
+    const FaceSample sample = faces.next(skipped);
+    if (options.verbose)
+    {
+      Eigen::Vector3d lower = Eigen::Vector3d::Constant(1e9), upper = -lower;
+      std::vector<double> xs;
+      for (const Eigen::Vector3d& p : sample.segment.points)
+      {
+        const Eigen::Vector3d b = sample.camera_T_brick.inverse() * p;
+        lower = lower.cwiseMin(b);
+        upper = upper.cwiseMax(b);
+        xs.push_back(b.x());
+      }
+      std::cerr << "face " << frame << " " << sample.type.name << " at " << sample.distance_m << " m, "
+                << sample.segment.size() << " points, brick-frame x [" << 1e3 * lower.x() << ", " << 1e3 * upper.x()
+                << "] y [" << 1e3 * lower.y() << ", " << 1e3 * upper.y() << "] z [" << 1e3 * lower.z() << ", "
+                << 1e3 * upper.z() << "] x1% " << 1e3 * quantile(xs, 0.01) << " x99% " << 1e3 * quantile(xs, 0.99)
+                << "\n";
+    }
+    segment_sizes.push_back(static_cast<double>(sample.segment.size()));
+    if (!models.count(sample.type.name))
+      models[sample.type.name] = buildBrickModelCloud(sample.type);
+    const PointSet& model = models[sample.type.name];
+
+    Super4PCSParams params;
+    params.seed = options.seed + frame;
+    PclFpcsParams pcl_params;
+    pcl_params.overlap = params.overlap;
+    pcl_params.delta_m = params.delta_m;
+    pcl_params.sample_size = params.sample_size;
+    pcl_params.max_time_s = options.pcl_time_s;
+    // ICP from the identity: the model sits at the camera origin, the face
+    // 0.5-2 m away; the correspondence radius has to reach that far.
+    PclIcpParams icp_params;
+    icp_params.max_correspondence_distance_m = 2.5;
+
+    const std::vector<std::pair<MethodStats*, std::function<RegistrationResult()>>> runs{
+        {&ours, [&] { return Super4PCS(params).align(model, sample.segment); }},
+        {&fpcs, [&] { return alignPclFpcs(model, sample.segment, pcl_params); }},
+        {&kfpcs, [&] { return alignPclKfpcs(model, sample.segment, pcl_params); }},
+        {&icp, [&] { return alignPclIcp(model, sample.segment, icp_params); }},
+    };
+    for (const auto& [stats, run] : runs)
+    {
+      if (options.only_ours && stats != &ours)
+        continue;
+      try
+      {
+        const double cpu_start_s = threadCpuSeconds();
+        const RegistrationResult result = run();
+        const double cpu_s = threadCpuSeconds() - cpu_start_s;
+        Outcome outcome = judge(result, sample.camera_T_brick);
+        outcome.cpu_ms = 1e3 * cpu_s;
+        if (options.verbose)
+          std::cerr << "  offset in brick frame (mm) "
+                    << (1e3 * (sample.camera_T_brick.inverse() * result.source_to_target.translation())).transpose()
+                    << "  " << stats->name << ": " << outcome.time_ms << " ms, " << outcome.rotation_deg << " deg, "
+                    << outcome.translation_mm << " mm, LCP " << result.lcp_score << ", " << result.bases_tried
+                    << " bases, " << result.reason << "\n";
+        stats->outcomes.push_back(outcome);
+        if (stats == &ours)
+        {
+          MethodStats& by_type = ours_by_type[sample.type.name];
+          by_type.name = sample.type.name;
+          by_type.outcomes.push_back(outcome);
+        }
+      }
+      catch (const InputError& e)
+      {
+        ++input_errors;
+        std::cerr << "frame " << frame << " " << stats->name << ": " << e.what() << "\n";
+        stats->outcomes.push_back(Outcome{});  // counted as a failure
+      }
+    }
+    if ((frame + 1) % 20 == 0)
+      std::cerr << "bench_registration: " << (frame + 1) << "/" << options.frames << " faces\n";
+  }
+
+  std::printf("\n## Registration of segmented brick top faces (synthetic D415, 0.5-2 m)\n\n");
+  std::printf("%d faces (%d frames skipped: top face < %.0f%% visible or < %d points), segment size median %.0f "
+              "points (min %.0f, max %.0f). Success: rotation < %.0f deg and translation < %.0f mm modulo the "
+              "face symmetry.\n\n",
+              options.frames, skipped, 100.0 * options.min_visible_fraction, kMinSegmentPoints, quantile(segment_sizes, 0.5),
+              quantile(segment_sizes, 0.0), quantile(segment_sizes, 1.0), kSuccessRotationDeg,
+              1e3 * kSuccessTranslationM);
+  std::printf("| method | median ms | p95 ms | median CPU ms | p95 CPU ms | success | median rot. err. (deg) | "
+              "median transl. err. (mm) |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::map<std::string, Summary> summaries;
+  for (const MethodStats* stats : {&ours, &fpcs, &kfpcs, &icp})
+  {
+    const Summary s = summarise(*stats);
+    summaries[stats->json_key] = s;
+    std::printf("| %s | %.1f | %.1f | %.1f | %.1f | %.1f%% | %.2f | %.1f |\n", stats->name.c_str(), s.median_ms,
+                s.p95_ms, s.median_cpu_ms, s.p95_cpu_ms, 100.0 * s.success, s.median_rotation_deg,
+                s.median_translation_mm);
+  }
+  std::printf("\nSuper4PCS by brick type:\n\n| type | faces | median ms | p95 ms | median CPU ms | success | "
+              "median rot. (deg) | median transl. (mm) |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const auto& [name, stats] : ours_by_type)
+  {
+    const Summary s = summarise(stats);
+    std::printf("| %s | %zu | %.1f | %.1f | %.1f | %.1f%% | %.2f | %.1f |\n", name.c_str(), stats.outcomes.size(),
+                s.median_ms, s.p95_ms, s.median_cpu_ms, 100.0 * s.success, s.median_rotation_deg,
+                s.median_translation_mm);
+  }
+  if (input_errors > 0)
+    std::printf("\n%d registrations rejected their input (counted as failures).\n", input_errors);
+
+  const Summary& s = summaries["s4pcs"];
+  std::printf("\n{\"frames\": %d, \"s4pcs_median_ms\": %.3f, \"s4pcs_p95_ms\": %.3f, \"s4pcs_median_cpu_ms\": %.3f, "
+              "\"s4pcs_p95_cpu_ms\": %.3f, \"s4pcs_success\": %.4f, "
+              "\"s4pcs_median_rot_deg\": %.3f, \"s4pcs_median_trans_mm\": %.3f, "
+              "\"pcl_fpcs_median_ms\": %.3f, \"pcl_fpcs_p95_ms\": %.3f, \"pcl_fpcs_median_cpu_ms\": %.3f, "
+              "\"pcl_fpcs_success\": %.4f, "
+              "\"pcl_kfpcs_median_ms\": %.3f, \"pcl_kfpcs_p95_ms\": %.3f, \"pcl_kfpcs_success\": %.4f, "
+              "\"pcl_icp_median_ms\": %.3f, \"pcl_icp_success\": %.4f, \"speedup_vs_pcl_fpcs\": %.2f}\n",
+              options.frames, s.median_ms, s.p95_ms, s.median_cpu_ms, s.p95_cpu_ms, s.success, s.median_rotation_deg, s.median_translation_mm,
+              summaries["pcl_fpcs"].median_ms, summaries["pcl_fpcs"].p95_ms, summaries["pcl_fpcs"].median_cpu_ms,
+              summaries["pcl_fpcs"].success,
+              summaries["pcl_kfpcs"].median_ms, summaries["pcl_kfpcs"].p95_ms, summaries["pcl_kfpcs"].success,
+              summaries["pcl_icp"].median_ms, summaries["pcl_icp"].success,
+              summaries["pcl_fpcs"].median_ms / s.median_ms);
+  return 0;
+}
