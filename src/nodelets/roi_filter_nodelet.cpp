@@ -3,9 +3,12 @@
 // least-area quadrilateral, inverse-projects its corners, T1, T2 and centre;
 // publishes the brick candidates on `candidates`, in-process. Dropped
 // segments are logged at debug level with the reason. `debug_image` shows
-// the quads, T1/T2 and the dropped segments, drawn only when subscribed.
+// the quads, T1/T2 and the dropped segments, and `debug_cloud` the accepted
+// segments' points; both are made only when someone subscribes.
 
 #include <nodelet/nodelet.h>
+#include <pcl_conversions/pcl_conversions.h>
+#include <sensor_msgs/PointCloud2.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/ros.h>
 
@@ -37,6 +40,7 @@ private:
     getPrivateNodeHandle().param("max_roi_ms", max_roi_ms_, 200.0);
     candidates_publisher_ = node.advertise<CandidatesMessage>("candidates", 2);
     debug_image_publisher_ = node.advertise<sensor_msgs::Image>("debug_image", 1);
+    debug_cloud_publisher_ = node.advertise<sensor_msgs::PointCloud2>("debug_cloud", 1);
     segments_subscriber_ = node.subscribe("segments", 2, &RoiFilterNodelet::onSegments, this);
   }
 
@@ -74,10 +78,23 @@ private:
                   message->front_end.candidates.size(), message->front_end.rejections.size(),
                   message->front_end.timings.total_ms);
     candidates_publisher_.publish(CandidatesMessageConstPtr(message));
+    if (debug_cloud_publisher_.getNumSubscribers() > 0) publishDebugCloud(*message);
     // Drawing costs a frame copy: only for someone watching.
     if (debug_image_publisher_.getNumSubscribers() > 0)
       debug_image_publisher_.publish(ros_conversions::toImageMessage(
           drawCandidateOverlay(segments->frame->frame.rgb, message->front_end), "rgb8", segments->header));
+  }
+
+  /// The accepted segments' points, one cloud for rviz.
+  void publishDebugCloud(const CandidatesMessage& message)
+  {
+    pcl::PointCloud<pcl::PointXYZ> merged;
+    for (const BrickCandidate& candidate : message.front_end.candidates)
+      if (candidate.points) merged += *candidate.points;
+    sensor_msgs::PointCloud2 cloud;
+    pcl::toROSMsg(merged, cloud);
+    cloud.header = message.header;
+    debug_cloud_publisher_.publish(cloud);
   }
 
   std::unique_ptr<FrontEnd> front_end_;
@@ -85,6 +102,7 @@ private:
   ros::Subscriber segments_subscriber_;
   ros::Publisher candidates_publisher_;
   ros::Publisher debug_image_publisher_;
+  ros::Publisher debug_cloud_publisher_;
 };
 }  // namespace brick_pose
 
