@@ -109,7 +109,7 @@ private:
   /// starts from the values loaded above, not from the .cfg defaults.
   void startReconfigure()
   {
-    reconfigure_ = std::make_unique<dynamic_reconfigure::Server<PoseCorrectionConfig>>(getPrivateNodeHandle());
+    reconfigure_ = std::make_unique<dynamic_reconfigure::Server<PoseCorrectionConfig>>(reconfigure_mutex_, getPrivateNodeHandle());
     const BrickPoseEstimatorParams& params = estimator_->params();
     PoseCorrectionConfig config;
     config.refinement = toString(params.refinement);
@@ -351,6 +351,7 @@ private:
   // Replaced whole on reconfigure, on the same single-threaded queue as the
   // registrations callback that uses it.
   std::unique_ptr<BrickPoseEstimator> estimator_;
+  boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<PoseCorrectionConfig>> reconfigure_;
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;

@@ -36,6 +36,7 @@ private:
       return;
     }
     getPrivateNodeHandle().param("max_frame_registration_ms", max_frame_registration_ms_, 400.0);
+    node.param("max_latency_ms", max_latency_ms_, 3000.0);
     registrations_publisher_ = node.advertise<RegistrationsMessage>("registrations", 2);
     candidates_subscriber_ = node.subscribe("candidates", 2, &RegistrationNodelet::onCandidates, this);
     startReconfigure();
@@ -45,7 +46,7 @@ private:
   /// the values loaded above, not from the .cfg defaults.
   void startReconfigure()
   {
-    reconfigure_ = std::make_unique<dynamic_reconfigure::Server<RegistrationConfig>>(getPrivateNodeHandle());
+    reconfigure_ = std::make_unique<dynamic_reconfigure::Server<RegistrationConfig>>(reconfigure_mutex_, getPrivateNodeHandle());
     const auto& params = estimator_->params().super4pcs;
     RegistrationConfig config;
     config.overlap = params.overlap;
@@ -87,11 +88,12 @@ private:
       // Each brick has Super4PCS's own budget; the frame has this one, so a
       // pile of bricks cannot hold the pipeline up.
       const double spent_ms = (ros::WallTime::now() - start).toSec() * 1e3;
-      if (spent_ms > max_frame_registration_ms_)
+      const double age_ms = frameAgeMs(*candidates->frame);
+      if (spent_ms > max_frame_registration_ms_ || age_ms > max_latency_ms_)
       {
-        NODELET_WARN_THROTTLE(2.0, "frame %.3f: registration budget of %.0f ms spent, %zu of %zu candidates skipped",
-                              candidates->header.stamp.toSec(), max_frame_registration_ms_, list.size() - i,
-                              list.size());
+        NODELET_WARN_THROTTLE(2.0, "frame %.3f: %zu of %zu candidates skipped: registration took %.0f ms (budget %.0f), "
+                              "frame %.0f ms old (budget %.0f)", candidates->header.stamp.toSec(), list.size() - i,
+                              list.size(), spent_ms, max_frame_registration_ms_, age_ms, max_latency_ms_);
         break;
       }
       try
@@ -110,9 +112,11 @@ private:
 
   BrickCatalogue catalogue_;
   double max_frame_registration_ms_ = 400.0;
+  double max_latency_ms_ = 3000.0;
   // Replaced whole on reconfigure; the subscriber and the reconfigure server
   // share the nodelet's single-threaded queue, so no lock is needed.
   std::unique_ptr<BrickPoseEstimator> estimator_;
+  boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<RegistrationConfig>> reconfigure_;
   ros::Subscriber candidates_subscriber_;
   ros::Publisher registrations_publisher_;

@@ -37,7 +37,7 @@ private:
       NODELET_ERROR("ROI filter not started: %s", e.what());
       return;
     }
-    getPrivateNodeHandle().param("max_roi_ms", max_roi_ms_, 200.0);
+    node.param("max_latency_ms", max_latency_ms_, 3000.0);
     candidates_publisher_ = node.advertise<CandidatesMessage>("candidates", 2);
     debug_image_publisher_ = node.advertise<sensor_msgs::Image>("debug_image", 1);
     debug_cloud_publisher_ = node.advertise<sensor_msgs::PointCloud2>("debug_cloud", 1);
@@ -46,6 +46,12 @@ private:
 
   void onSegments(const SegmentsMessageConstPtr& segments)
   {
+    if (frameAgeMs(*segments->frame) > max_latency_ms_)
+    {
+      NODELET_WARN_THROTTLE(2.0, "dropping frame %.3f: %.0f ms old before ROI filtration, over the %.0f ms latency budget",
+                            segments->header.stamp.toSec(), frameAgeMs(*segments->frame), max_latency_ms_);
+      return;
+    }
     const ros::WallTime start = ros::WallTime::now();
     auto message = boost::make_shared<CandidatesMessage>();
     message->header = segments->header;
@@ -63,12 +69,6 @@ private:
       return;
     }
     const double roi_ms = (ros::WallTime::now() - start).toSec() * 1e3;
-    if (roi_ms > max_roi_ms_)
-    {
-      NODELET_WARN_THROTTLE(2.0, "dropping frame %.3f: ROI filtration took %.0f ms, over its %.0f ms budget",
-                            segments->header.stamp.toSec(), roi_ms, max_roi_ms_);
-      return;
-    }
     message->front_end.timings.total_ms = segments->segmentation_ms + roi_ms;
     for (const Rejection& rejection : message->front_end.rejections)
       NODELET_DEBUG("frame %.3f: dropped %s segment of %d px at (%d, %d): %s", segments->header.stamp.toSec(),
@@ -98,7 +98,7 @@ private:
   }
 
   std::unique_ptr<FrontEnd> front_end_;
-  double max_roi_ms_ = 200.0;
+  double max_latency_ms_ = 3000.0;
   ros::Subscriber segments_subscriber_;
   ros::Publisher candidates_publisher_;
   ros::Publisher debug_image_publisher_;

@@ -29,7 +29,7 @@ private:
       NODELET_ERROR("segmentation not started: %s", e.what());
       return;
     }
-    getPrivateNodeHandle().param("max_segmentation_ms", max_segmentation_ms_, 150.0);
+    node.param("max_latency_ms", max_latency_ms_, 3000.0);
     segments_publisher_ = node.advertise<SegmentsMessage>("segments", 2);
     frame_subscriber_ = node.subscribe("frame", 2, &SegmentationNodelet::onFrame, this);
     NODELET_INFO("segmentation mode %s", toString(front_end_->params().mode).c_str());
@@ -37,6 +37,12 @@ private:
 
   void onFrame(const FrameMessageConstPtr& frame)
   {
+    if (frameAgeMs(*frame) > max_latency_ms_)
+    {
+      NODELET_WARN_THROTTLE(2.0, "dropping frame %.3f: %.0f ms old before segmentation, over the %.0f ms latency budget",
+                            frame->header.stamp.toSec(), frameAgeMs(*frame), max_latency_ms_);
+      return;
+    }
     const ros::WallTime start = ros::WallTime::now();
     auto message = boost::make_shared<SegmentsMessage>();
     message->header = frame->header;
@@ -51,20 +57,13 @@ private:
       return;
     }
     message->segmentation_ms = (ros::WallTime::now() - start).toSec() * 1e3;
-    // A late frame would only delay the fresher ones queued behind it.
-    if (message->segmentation_ms > max_segmentation_ms_)
-    {
-      NODELET_WARN_THROTTLE(2.0, "dropping frame %.3f: segmentation took %.0f ms, over its %.0f ms budget",
-                            frame->header.stamp.toSec(), message->segmentation_ms, max_segmentation_ms_);
-      return;
-    }
     if (message->segments.empty())
       NODELET_DEBUG_THROTTLE(2.0, "frame %.3f: no segment of any plate colour", frame->header.stamp.toSec());
     segments_publisher_.publish(SegmentsMessageConstPtr(message));
   }
 
   std::unique_ptr<FrontEnd> front_end_;
-  double max_segmentation_ms_ = 150.0;
+  double max_latency_ms_ = 3000.0;
   ros::Subscriber frame_subscriber_;
   ros::Publisher segments_publisher_;
 };

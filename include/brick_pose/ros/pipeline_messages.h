@@ -7,6 +7,7 @@
 
 #include <boost/shared_ptr.hpp>
 #include <ros/time.h>
+#include <ros/wall_timer.h>
 #include <std_msgs/Header.h>
 
 #include "brick_pose/frame/rgbd_frame.h"
@@ -26,6 +27,14 @@ struct FrameMessage
   ros::WallTime arrival;
 };
 using FrameMessageConstPtr = boost::shared_ptr<const FrameMessage>;
+
+/// Milliseconds since the frame arrived: each stage drops a frame that is
+/// already older than the pipeline's latency budget, instead of spending the
+/// CPU on a result that would come too late and delay the fresher frames.
+inline double frameAgeMs(const FrameMessage& frame)
+{
+  return (ros::WallTime::now() - frame.arrival).toSec() * 1e3;
+}
 
 /// Stage 3 output: the segments of one frame.
 struct SegmentsMessage
