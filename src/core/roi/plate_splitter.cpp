@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <opencv2/imgproc.hpp>
 
@@ -19,11 +20,59 @@ constexpr double kMinDefectDepthPx = 4.0;
 /// first long edge, 1 on the opposite one.
 struct AcrossCoordinate
 {
-  Eigen::Vector3d origin;
-  Eigen::Vector3d across;  // divided by its squared length
+  Eigen::Vector3d origin;  // a point of the first edge along the bricks
+  Eigen::Vector3d across;  // unit direction across the bricks, divided by the across extent
 
   double operator()(const Eigen::Vector3d& point) const { return (point - origin).dot(across); }
 };
+
+/// Mean distance between the lines a0-a1 and b0-b1 (from the middle of each
+/// segment to the other line).
+double lineSeparation(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& b0,
+                      const Eigen::Vector3d& b1)
+{
+  auto distanceToLine = [](const Eigen::Vector3d& point, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1) {
+    return (point - p0).cross((p1 - p0).normalized()).norm();
+  };
+  return 0.5 * (distanceToLine(0.5 * (a0 + a1), b0, b1) + distanceToLine(0.5 * (b0 + b1), a0, a1));
+}
+
+/// Convexity defects of the segment's outline (empty when there are none).
+std::vector<cv::Vec4i> outlineDefects(const std::vector<cv::Point>& outline)
+{
+  std::vector<cv::Vec4i> defects;
+  if (outline.size() < 4) return defects;
+  std::vector<int> hull;
+  cv::convexHull(outline, hull, false, false);
+  try
+  {
+    if (hull.size() >= 3) cv::convexityDefects(outline, hull, defects);
+  }
+  catch (const cv::Exception&)
+  {
+    defects.clear();  // self-intersecting outline: no hint
+  }
+  return defects;
+}
+
+/// Image direction of the deepest notch (a gap between two plates seen
+/// from its open end): from the middle of its mouth to its apex.
+std::optional<Eigen::Vector2d> gapDirectionPx(const Segment& segment)
+{
+  constexpr double kMinGapDepthPx = 10.0;
+  const std::vector<cv::Point> outline = largestOutline(segment.mask, segment.bounding_box_px.tl());
+  double deepest_px = kMinGapDepthPx;
+  std::optional<Eigen::Vector2d> direction;
+  for (const cv::Vec4i& defect : outlineDefects(outline))
+  {
+    if (defect[3] / 256.0 < deepest_px) continue;
+    deepest_px = defect[3] / 256.0;
+    const cv::Point mouth = (outline[defect[0]] + outline[defect[1]]) * 0.5;
+    const cv::Point apex = outline[defect[2]];
+    direction = Eigen::Vector2d(apex.x - mouth.x, apex.y - mouth.y).normalized();
+  }
+  return direction;
+}
 
 /// Cut positions (fractions across), moved to the deepest nearby defect apex.
 std::vector<double> cutFractions(const Segment& segment, const BrickCandidate& measured, const PinholeCamera& camera,
@@ -34,19 +83,7 @@ std::vector<double> cutFractions(const Segment& segment, const BrickCandidate& m
   std::vector<double> best_depth(cuts.size(), 0.0);
 
   const std::vector<cv::Point> outline = largestOutline(segment.mask, segment.bounding_box_px.tl());
-  if (outline.size() < 4) return cuts;
-  std::vector<int> hull;
-  cv::convexHull(outline, hull, false, false);
-  std::vector<cv::Vec4i> defects;
-  try
-  {
-    if (hull.size() >= 3) cv::convexityDefects(outline, hull, defects);
-  }
-  catch (const cv::Exception&)
-  {
-    return cuts;
-  }
-  for (const cv::Vec4i& defect : defects)
+  for (const cv::Vec4i& defect : outlineDefects(outline))
   {
     const double depth_px = defect[3] / 256.0;
     if (depth_px < kMinDefectDepthPx) continue;
@@ -89,21 +126,41 @@ std::vector<Segment> splitSideBySide(const RgbdFrame& frame, const Segment& segm
   const double max_length_m = type.length_m + tolerance_m;
   const double min_length_m = type.width_m + tolerance_m;
   auto alongBricks = [&](double side_m) { return side_m > min_length_m && side_m <= max_length_m; };
-  if (alongBricks(measured.length_m) && measured.width_m > type.width_m + tolerance_m)
+  const bool along_long_edges = alongBricks(measured.length_m) && measured.width_m > type.width_m + tolerance_m;
+  const bool along_short_edges = alongBricks(measured.width_m) && measured.length_m > type.width_m + tolerance_m;
+  // When both sides could run along the bricks (rows clipped by the image
+  // border), the visible end of a gap tells: it runs along the bricks.
+  bool use_short_edges = along_short_edges && !along_long_edges;
+  if (along_long_edges && along_short_edges)
+    if (const std::optional<Eigen::Vector2d> gap = gapDirectionPx(segment))
+    {
+      const Eigen::Vector2d long_edge = (measured.corners_px[1] - measured.corners_px[0]).normalized();
+      const Eigen::Vector2d short_edge = (measured.corners_px[2] - measured.corners_px[1]).normalized();
+      use_short_edges = std::abs(gap->dot(short_edge)) > std::abs(gap->dot(long_edge));
+    }
+  // Cuts run along the bricks: the across coordinate is measured at right
+  // angles to them on the plane, not along the quad's other edges, which
+  // follow the image border when the rows are clipped.
+  Eigen::Vector3d along, toward_far_edge;
+  if (use_short_edges)
   {
-    coordinate.across = c[3] - c[0];
-    across_m = measured.width_m;
+    along = c[2] - c[1];
+    toward_far_edge = c[1] - c[0];
+    across_m = lineSeparation(c[1], c[2], c[3], c[0]);
   }
-  else if (alongBricks(measured.width_m) && measured.length_m > type.width_m + tolerance_m)
+  else if (along_long_edges)
   {
-    coordinate.across = c[1] - c[0];
-    across_m = measured.length_m;
+    along = c[1] - c[0];
+    toward_far_edge = c[3] - c[0];
+    across_m = lineSeparation(c[0], c[1], c[3], c[2]);
   }
   else
     return {};
+  Eigen::Vector3d across_direction = measured.plane.normal.cross(along).normalized();
+  if (across_direction.dot(toward_far_edge) < 0.0) across_direction = -across_direction;
   const int parts = sideBySideCount(across_m, type.width_m);
   if (parts < 2 || across_m > parts * type.width_m + (parts - 1) * kMaxGapM + tolerance_m) return {};
-  coordinate.across /= coordinate.across.squaredNorm();
+  coordinate.across = across_direction / across_m;
 
   const std::vector<double> cuts = cutFractions(segment, measured, frame.camera, coordinate, parts);
   const cv::Rect& box = segment.bounding_box_px;
