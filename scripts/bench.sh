@@ -4,11 +4,8 @@
 # bench/results/. Run on an otherwise idle machine: the figures are timings.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-export PATH=/usr/bin:/bin:$PATH
-set +u
-# shellcheck disable=SC1091
-source "$root/ws/devel/setup.bash"
-set -u
+# shellcheck source=scripts/ros_env.sh
+source "$root/scripts/ros_env.sh"
 bin=$root/ws/devel/lib/brick_pose
 results=$root/bench/results
 mkdir -p "$results"

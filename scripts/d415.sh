@@ -4,11 +4,8 @@
 # runs launch/d415.launch with the given arguments.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-export PATH=/usr/bin:/bin:$PATH
-set +u
-# shellcheck disable=SC1091
-source "$root/ws/devel/setup.bash"
-set -u
+# shellcheck source=scripts/ros_env.sh
+source "$root/scripts/ros_env.sh"
 if ! rospack find realsense2_camera >/dev/null 2>&1; then
   cat >&2 <<'MSG'
 brick_pose: the realsense2_camera ROS driver is not installed.

@@ -4,11 +4,8 @@
 # roslaunch (e.g. scene:=organised_pile lighting:=sunlight seed:=7).
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-export PATH=/usr/bin:/bin:$PATH
-set +u
-# shellcheck disable=SC1091
-source "$root/ws/devel/setup.bash"
-set -u
+# shellcheck source=scripts/ros_env.sh
+source "$root/scripts/ros_env.sh"
 export ROS_MASTER_URI=http://127.0.0.1:${BRICK_POSE_DEMO_PORT:-11411}
 export ROS_HOSTNAME=127.0.0.1
 log=$root/ws/demo.log

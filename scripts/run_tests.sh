@@ -4,12 +4,9 @@
 # from catkin_test_results over the result files.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-export PATH=/usr/bin:/bin:$PATH
+# shellcheck source=scripts/ros_env.sh
+source "$root/scripts/ros_env.sh"
 cd "$root/ws"
-# shellcheck disable=SC1091
-set +u
-source devel/setup.bash
-set -u
 results=build/test_results
 rm -rf "$results"
 start=$(date +%s)
