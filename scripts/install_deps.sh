@@ -16,6 +16,7 @@ packages=(
   libvisualization-msgs-dev libstd-srvs-dev
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libgtest-dev
+  clang-16 libclang-rt-16-dev  # scripts/fuzz.sh: libFuzzer (clang 14 rejects lambdas capturing structured bindings)
 )
 
 missing=()

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets under fuzz/ (clang, ASan + UBSan, core-only,
+# build dir ws/fuzz) and runs each for FUZZ_SECONDS (default 30) on its seed
+# corpus fuzz/corpus/<target>/. New inputs go to ws/fuzz/corpus/<target>/ (the
+# repository's seeds stay as they are); a crash is saved under
+# ws/fuzz/artifacts/<target>/ and makes the script exit non-zero. Inputs under
+# fuzz/regressions/<target>/ (past crashes) are replayed first.
+#
+#   scripts/fuzz.sh                      all targets, 30 s each
+#   FUZZ_SECONDS=300 scripts/fuzz.sh fuzz_front_end
+set -uo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+export PATH=/usr/bin:/bin:$PATH
+build_dir=$root/ws/fuzz
+seconds=${FUZZ_SECONDS:-30}
+jobs=${FUZZ_BUILD_JOBS:-2}
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
+
+# clang 16: clang 14 rejects the core's lambdas that capture structured
+# bindings (a C++20 feature GCC and clang >= 16 accept in C++17 mode).
+cxx=${FUZZ_CXX:-clang++-16}
+cc=${FUZZ_CC:-clang-16}
+command -v "$cxx" >/dev/null || { echo "fuzz: $cxx missing (scripts/install_deps.sh installs it)" >&2; exit 1; }
+if [[ -f "$build_dir/CMakeCache.txt" ]] && ! grep -q "CMAKE_CXX_COMPILER:.*=$(command -v "$cxx")\$" "$build_dir/CMakeCache.txt"; then
+  rm -rf "$build_dir"  # configured with another compiler: CMake cannot switch in place
+fi
+CC=$cc CXX=$cxx cmake -S "$root" -B "$build_dir" -DBRICK_POSE_CORE_ONLY=ON -DBRICK_POSE_SANITIZE=ON \
+  -DBRICK_POSE_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null || { echo "fuzz: configure failed" >&2; exit 1; }
+cmake --build "$build_dir" --target fuzz_targets -j"$jobs" || { echo "fuzz: build failed" >&2; exit 1; }
+
+if [[ $# -gt 0 ]]; then targets=("$@"); else
+  mapfile -t targets < <(cd "$root/fuzz" && ls fuzz_*.cpp | sed 's/\.cpp$//')
+fi
+
+status=0
+summary=()
+for target in "${targets[@]}"; do
+  binary=$build_dir/fuzz/$target
+  [[ -x "$binary" ]] || { echo "fuzz: $target not built" >&2; status=1; continue; }
+  work_corpus=$build_dir/corpus/$target
+  artifacts=$build_dir/artifacts/$target
+  mkdir -p "$work_corpus" "$artifacts"
+
+  regressions=$root/fuzz/regressions/$target
+  if [[ -d "$regressions" ]] && compgen -G "$regressions/*" >/dev/null; then
+    echo "== $target: replaying $(ls "$regressions" | wc -l) past crash inputs"
+    if ! "$binary" -runs=0 "$regressions"/* >"$artifacts/regressions.log" 2>&1; then
+      echo "fuzz: $target still crashes on a past input, see $artifacts/regressions.log"
+      summary+=("$target: REGRESSION INPUT STILL CRASHES"); status=1
+    fi
+  fi
+
+  echo "== $target: ${seconds} s"
+  # -timeout: one input taking 10 s is a hang (Super4PCS has a 20 ms budget).
+  # -rss_limit_mb: a frame of a few kB must not need gigabytes.
+  "$binary" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 -print_final_stats=1 \
+    -artifact_prefix="$artifacts/" "$work_corpus" "$root/fuzz/corpus/$target" >"$artifacts/fuzz.log" 2>&1
+  rc=$?
+  runs=$(grep -oE 'stat::number_of_executed_units: *[0-9]+' "$artifacts/fuzz.log" | grep -oE '[0-9]+$' || echo "?")
+  if [[ $rc -ne 0 ]]; then
+    echo "fuzz: $target CRASHED (exit $rc), input(s): $(ls "$artifacts" | grep -vE '\.log$' | tr '\n' ' ')"
+    grep -m1 -E "ERROR: |runtime error:|deadly signal|uncaught|Assertion" "$artifacts/fuzz.log" || true
+    summary+=("$target: CRASH after $runs runs (see $artifacts/fuzz.log)"); status=1
+  else
+    summary+=("$target: clean, $runs runs in ${seconds} s")
+  fi
+done
+echo "== fuzz summary"
+printf '  %s\n' "${summary[@]}"
+exit $status
