@@ -114,6 +114,30 @@ TEST(FrontEnd, TwoTouchingPlatesSideBySideAreSplit)
   EXPECT_LT(std::abs(between.dot(scene.rotation.col(0))), 0.01);
 }
 
+TEST(FrontEnd, TouchingRowsClippedByTheImageBorderAreSplitAlongTheBricks)
+{
+  // Two blue plates side by side, both ends outside the image and cut
+  // slantwise by its border: the quad's short sides follow the border.
+  test::PlateScene scene;
+  scene.camera = test::PlateScene::vgaCamera();
+  scene.centre_m = Eigen::Vector3d(0.0, 0.0, 0.9);
+  scene.rotation = test::PlateScene::facingCamera(0.5);
+  scene.length_m = 1.2;
+  scene.width_m = 0.41;
+  scene.plate_rgb = cv::Vec3b(25, 60, 200);
+  const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020()).process(scene.frame());
+  ASSERT_EQ(result.candidates.size(), 2u);
+  for (const BrickCandidate& c : result.candidates)
+  {
+    EXPECT_EQ(c.type_name, "blue");
+    EXPECT_NEAR(c.width_m, 0.205, 0.01);
+    EXPECT_FALSE(c.complete);
+    // Each plate's long axis is the rows' direction.
+    const Eigen::Vector3d along = (c.corners_m[1] - c.corners_m[0]).normalized();
+    EXPECT_GT(std::abs(along.dot(scene.rotation.col(0))), std::cos(2.0 * M_PI / 180.0));
+  }
+}
+
 TEST(FrontEnd, PiecesOfAPlateCutByAnOccluderAreJoined)
 {
   test::PlateScene scene = d415Scene();
