@@ -234,6 +234,29 @@ TEST(OrganizedCloud, StridedCloudRemembersSourcePixels)
   EXPECT_NEAR(cloud->at(1, 1).x, (3 - 3.5) * 1.5 / 10.0, 1e-6);
 }
 
+TEST(OrganizedCloud, BlockMedianCloudSurvivesDropoutsAndKeepsEdges)
+{
+  // 8x6 image in 2x2 blocks: a hole-riddled block, an empty block and a
+  // block straddling a depth edge (median, not a blend).
+  cv::Mat depth = depthMillimetres(8, 6, 1000);
+  depth.at<std::uint16_t>(0, 0) = 0;
+  depth.at<std::uint16_t>(1, 1) = 0;  // block (0,0): two of four valid
+  depth(cv::Rect(2, 0, 2, 2)).setTo(0);  // block (1,0): none valid
+  depth.at<std::uint16_t>(2, 4) = 3000;  // block (2,1): 1, 1, 1, 3 m
+  const RgbdFrame frame = makeRgbdFrame(colourImage(), depth, smallCamera(), {});
+  std::vector<int> source;
+  const auto cloud = makeBlockMedianCloud(frame, 2, source);
+  ASSERT_EQ(cloud->width, 4u);
+  ASSERT_EQ(cloud->height, 3u);
+  EXPECT_NEAR(cloud->at(0, 0).z, 1.0, 1e-6);
+  EXPECT_TRUE(std::isnan(cloud->at(1, 0).z));
+  EXPECT_NEAR(cloud->at(2, 1).z, 1.0, 1e-6);
+  // Back-projected through the block centre (pixel-centre coordinates 4.5, 2.5).
+  EXPECT_NEAR(cloud->at(2, 1).x, (4.5 - 3.5) * 1.0 / 10.0, 1e-6);
+  EXPECT_NEAR(cloud->at(2, 1).y, (2.5 - 2.5) * 1.0 / 12.0, 1e-6);
+  EXPECT_EQ(source[1 * 4 + 2], 3 * 8 + 5);
+}
+
 TEST(OrganizedCloud, FullSizeFrameMatchesPinholeBackProjection)
 {
   const PinholeCamera camera = PinholeCamera::d415Color1280x720();

@@ -33,4 +33,12 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr backProjectPixels(const RgbdFrame& frame,
 /// keep the pixel footprint of colour-free segments without a voxel grid.
 pcl::PointCloud<pcl::PointXYZ>::Ptr makeStridedCloud(const RgbdFrame& frame, int stride,
                                                      std::vector<int>& source_pixels);
+/// An organised cloud of `block` x `block` pixel blocks: each point is the
+/// median of the block's valid depths, back-projected through the block's
+/// centre pixel (NaN when fewer than a quarter of the block has depth).
+/// Unlike striding, it survives dense dropouts (sunlight) and averages noise;
+/// the median does not blend the two sides of a depth edge. `source_pixels`
+/// receives the centre pixel of each block.
+pcl::PointCloud<pcl::PointXYZ>::Ptr makeBlockMedianCloud(const RgbdFrame& frame, int block,
+                                                         std::vector<int>& source_pixels);
 }  // namespace brick_pose

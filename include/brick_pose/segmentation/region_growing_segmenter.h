@@ -2,8 +2,8 @@
 // Colour-free segmentation (paper, "Region Growing Plane Segmentation"):
 // PCL region growing on normals and smoothness, for boxes of unknown colour.
 //
-// The frame is thinned by taking every `stride_px`-th pixel (not a voxel
-// grid), so every point keeps the pixel it came from; normals come from
+// The frame is thinned to the depth medians of stride_px x stride_px blocks
+// (not a voxel grid), so every point keeps the pixel it came from; normals come from
 // integral images on that organised cloud. Region growing leaves out the
 // border of each face (normals bend there) and splits noisy faces, so each
 // region, largest first, is then flood-filled at full resolution over the
@@ -18,7 +18,7 @@ namespace brick_pose
 {
 struct RegionGrowingParams
 {
-  int stride_px = 6;                     ///< Thinning of the frame before normals.
+  int stride_px = 6;                     ///< Block size of the thinned frame (pixels).
   double normal_smoothing_size = 8.0;    ///< Integral-image window, in strided pixels.
   double max_depth_change_factor = 0.02; ///< Normals are not smoothed across depth jumps larger than this x depth.
   int neighbours = 8;                    ///< k of the region-growing neighbourhood.

@@ -1,5 +1,6 @@
 #include "brick_pose/frame/organized_cloud.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -141,6 +142,58 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr makeStridedCloud(const RgbdFrame& frame, int
       point.z = z;
     }
   }
+  return cloud;
+}
+pcl::PointCloud<pcl::PointXYZ>::Ptr makeBlockMedianCloud(const RgbdFrame& frame, int block,
+                                                         std::vector<int>& source_pixels)
+{
+  if (block < 1) throw InputError("makeBlockMedianCloud: block must be >= 1");
+  const int width = frame.width_px();
+  const int height = frame.height_px();
+  const int out_width = width / block;
+  const int out_height = height / block;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::size_t min_valid = static_cast<std::size_t>(std::max(1, block * block / 4));
+
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+  cloud->resize(static_cast<std::size_t>(out_width) * out_height);
+  cloud->width = static_cast<std::uint32_t>(out_width);
+  cloud->height = static_cast<std::uint32_t>(out_height);
+  cloud->is_dense = false;
+  cloud->header.frame_id = frame.frame_id;
+  source_pixels.resize(cloud->size());
+
+  std::vector<float> depths;
+  depths.reserve(static_cast<std::size_t>(block) * block);
+  std::size_t i = 0;
+  for (int row = 0; row < out_height; ++row)
+    for (int col = 0; col < out_width; ++col, ++i)
+    {
+      depths.clear();
+      for (int v = row * block; v < (row + 1) * block; ++v)
+      {
+        const float* depth_row = frame.depth_m.ptr<float>(v);
+        for (int u = col * block; u < (col + 1) * block; ++u)
+          if (!std::isnan(depth_row[u])) depths.push_back(depth_row[u]);
+      }
+      const int u_centre = col * block + block / 2, v_centre = row * block + block / 2;
+      source_pixels[i] = v_centre * width + u_centre;
+      pcl::PointXYZ& point = (*cloud)[i];
+      if (depths.size() < min_valid)
+      {
+        point.x = point.y = point.z = nan;
+        continue;
+      }
+      auto middle = depths.begin() + static_cast<std::ptrdiff_t>(depths.size() / 2);
+      std::nth_element(depths.begin(), middle, depths.end());
+      const double z = *middle;
+      // The block's centre is at (col + 0.5) * block - 0.5 in pixel-centre coordinates.
+      const double u = (col + 0.5) * block - 0.5, v = (row + 0.5) * block - 0.5;
+      const Eigen::Vector3d p = frame.camera.backProject(u, v, z);
+      point.x = static_cast<float>(p.x());
+      point.y = static_cast<float>(p.y());
+      point.z = static_cast<float>(p.z());
+    }
   return cloud;
 }
 }  // namespace brick_pose

@@ -129,7 +129,9 @@ RegionGrowingSegmenter::RegionGrowingSegmenter(const RegionGrowingParams& params
 std::vector<Segment> RegionGrowingSegmenter::segment(const RgbdFrame& frame) const
 {
   std::vector<int> source_pixels;
-  const pcl::PointCloud<pcl::PointXYZ>::Ptr strided = makeStridedCloud(frame, params_.stride_px, source_pixels);
+  // Block medians rather than every stride-th pixel: sunlight leaves so many
+  // dropouts that the integral-image normals of a strided cloud vanish.
+  const pcl::PointCloud<pcl::PointXYZ>::Ptr strided = makeBlockMedianCloud(frame, params_.stride_px, source_pixels);
 
   pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
   pcl::IntegralImageNormalEstimation<pcl::PointXYZ, pcl::Normal> normal_estimation;
