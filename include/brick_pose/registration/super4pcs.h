@@ -44,18 +44,25 @@ struct Super4PCSParams
   /// Upper bound on the bases drawn.
   int max_bases = 200;
   /// Stop once LCP >= good_enough_ratio * overlap.
-  double good_enough_ratio = 0.9;
+  double good_enough_ratio = 0.85;
   /// The result counts as a success when LCP >= min_success_ratio * overlap.
   double min_success_ratio = 0.5;
   /// A 4-point fit with an RMS above max_fit_rms_factor * delta is rejected.
   double max_fit_rms_factor = 1.5;
-  /// Symmetric trimmed ICP iterations on the best candidate (0 disables).
-  int refine_iterations = 20;
+  /// Symmetric trimmed ICP iterations on the best candidate (0 disables
+  /// the refinement, both stages).
+  int refine_iterations = 15;
   /// Points kept (evenly spread) from the target for the ICP refinement...
   int refine_sample_size = 500;
   /// ...and from the source: denser, because a clean source (a model)
   /// resolves the edges that fix the in-plane pose of a face.
   int refine_source_sample_size = 1500;
+  /// A short second ICP stage on denser samples (0 iterations disables it):
+  /// the in-plane position of a long face is fixed by its short edges, which
+  /// sparse samples blur by about their spacing.
+  int fine_refine_iterations = 10;
+  int fine_refine_sample_size = 2000;
+  int fine_refine_source_sample_size = 3000;
   /// Same seed and inputs => same result (unless the time budget cuts in).
   std::uint64_t seed = 1;
 

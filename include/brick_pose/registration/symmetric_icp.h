@@ -39,6 +39,12 @@ struct SymmetricIcpOptions
   /// narrow, the last ones see edges that overhang by less than the spacing.
   double in_surface_tolerance_m = 0.005;
   double final_in_surface_tolerance_m = 0.005;
+  /// Source -> target pairs whose offset runs along the surface pull
+  /// point-to-point (true) or are left out (false). Without them only target
+  /// points the source does not cover pull along the surface, which is the
+  /// right criterion when the source (a model) is larger than the target
+  /// (a partial view): a source overhanging the target's edge is no error.
+  bool forward_point_to_point = true;
   /// The same for target -> source pairs (whose offsets are sampling noise up
   /// to the *source* spacing); <= 0 means the same as in_surface_tolerance_m.
   /// A source denser than the target (a model can be) then resolves edges

@@ -1,5 +1,6 @@
 #include "brick_pose/registration/super4pcs.h"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -72,6 +73,14 @@ struct SearchScales
   double source_diameter_m = 0.0;
 };
 
+/// Sample sizes and iterations of one ICP refinement stage.
+struct RefineStage
+{
+  int source_sample_size;
+  int target_sample_size;
+  int iterations;
+};
+
 /// With normals, a candidate must also turn each base normal onto the normal
 /// of its target point: the pair filters only compare normals with each other,
 /// which cannot tell a flat face from the same face seen from behind.
@@ -110,6 +119,11 @@ void Super4PCSParams::validate() const
   if (refine_sample_size < 3)
     throw ConfigError("Super4PCSParams.refine_sample_size must be at least 3, got " +
                       std::to_string(refine_sample_size));
+  if (fine_refine_iterations < 0)
+    throw ConfigError("Super4PCSParams.fine_refine_iterations must be >= 0, got " +
+                      std::to_string(fine_refine_iterations));
+  if (fine_refine_sample_size < 3 || fine_refine_source_sample_size < 3)
+    throw ConfigError("Super4PCSParams.fine_refine_sample_size and fine_refine_source_sample_size must be at least 3");
   if (refine_source_sample_size < 3)
     throw ConfigError("Super4PCSParams.refine_source_sample_size must be at least 3, got " +
                       std::to_string(refine_source_sample_size));
@@ -247,28 +261,42 @@ RegistrationResult Super4PCS::align(const PointSet& source, const PointSet& targ
   }
   if (params_.refine_iterations > 0)
   {
-    // Denser evenly spread samples than for the search: ICP on a face is
-    // limited by how finely the samples resolve its boundary.
-    PointSet refine_source = source.subset(uniformSubsample(source.points, params_.refine_source_sample_size, rng));
-    const std::vector<Eigen::Vector3d> refine_target =
-        target.subset(uniformSubsample(target.points, params_.refine_sample_size, rng)).points;
-    SymmetricIcpOptions icp;
-    // Start wide enough to reach from a 4-point pose that is off by the pair
-    // tolerance at the base's ends or by several degrees in the plane of a
-    // face (which the LCP hardly sees), finish at the LCP's resolution.
-    const double refine_spacing_m = neighbourSpacing(refine_target, 0.5, rng);
-    icp.final_radius_m = std::max(1.5 * scales.lcp_radius_m, 1.5 * refine_spacing_m);
-    icp.radius_m = std::max({3.0 * scales.pair_tolerance_m, 0.08 * scales.source_diameter_m, icp.final_radius_m});
-    icp.in_surface_tolerance_m = std::max(params_.delta_m, refine_spacing_m);
-    icp.final_in_surface_tolerance_m = icp.in_surface_tolerance_m;
-    icp.reverse_in_surface_tolerance_m =
-        std::max(params_.delta_m, kReverseTolerancePerSpacing * neighbourSpacing(refine_source.points, 0.5, rng));
-    icp.max_iterations = params_.refine_iterations;
-    if (!refine_source.hasNormals())
-      refine_source.normals = estimateNormals(
-          refine_source.points, kNormalRadiusPerSpacing * neighbourSpacing(refine_source.points, 0.5, rng));
-    const Eigen::Isometry3d refined =
-        refineSymmetricIcp(refine_source.points, refine_source.normals, refine_target, best_transform, icp);
+    // Coarse stage on moderate samples from the 4-point pose (wide radius,
+    // fast slides), then a short fine stage on dense samples: ICP on a face is
+    // only as precise as its samples resolve the face's edges, and dense
+    // samples cost too much to start with.
+    Eigen::Isometry3d refined = best_transform;
+    double start_radius_m = std::max({3.0 * scales.pair_tolerance_m, 0.08 * scales.source_diameter_m});
+    const std::array<RefineStage, 2> stages{{
+        {params_.refine_source_sample_size, params_.refine_sample_size, params_.refine_iterations},
+        {params_.fine_refine_source_sample_size, params_.fine_refine_sample_size, params_.fine_refine_iterations},
+    }};
+    for (const RefineStage& stage : stages)
+    {
+      if (stage.iterations <= 0)
+        continue;
+      PointSet refine_source = source.subset(uniformSubsample(source.points, stage.source_sample_size, rng));
+      const std::vector<Eigen::Vector3d> refine_target =
+          target.subset(uniformSubsample(target.points, stage.target_sample_size, rng)).points;
+      if (!refine_source.hasNormals())
+        refine_source.normals = estimateNormals(
+            refine_source.points, kNormalRadiusPerSpacing * neighbourSpacing(refine_source.points, 0.5, rng));
+      const double target_spacing_m = neighbourSpacing(refine_target, 0.5, rng);
+      SymmetricIcpOptions icp;
+      // Finish at the LCP's resolution.
+      icp.final_radius_m = std::max(1.5 * scales.lcp_radius_m, 1.5 * target_spacing_m);
+      icp.radius_m = std::max(start_radius_m, icp.final_radius_m);
+      icp.in_surface_tolerance_m = std::max(params_.delta_m, target_spacing_m);
+      icp.final_in_surface_tolerance_m = icp.in_surface_tolerance_m;
+      icp.reverse_in_surface_tolerance_m =
+          std::max(params_.delta_m, kReverseTolerancePerSpacing * neighbourSpacing(refine_source.points, 0.5, rng));
+      icp.max_iterations = stage.iterations;
+      // Steps below a fiftieth of the accuracy change nothing that matters.
+      icp.min_step_m = 0.02 * params_.delta_m;
+      icp.min_step_rad = icp.min_step_m / std::max(scales.source_diameter_m, 1e-9);
+      refined = refineSymmetricIcp(refine_source.points, refine_source.normals, refine_target, refined, icp);
+      start_radius_m = 2.0 * icp.final_radius_m;  // the next stage starts close
+    }
     const double refined_score = scorer.score(refined);
     // ICP cannot be trusted to raise the LCP on flat faces (it slides), but a
     // clear drop means it was pulled by clutter: then keep the 4-point pose.

@@ -83,9 +83,12 @@ Eigen::Isometry3d scaledStep(const Eigen::Isometry3d& step, double factor)
   return scaled;
 }
 
-/// Nearest neighbours both ways within radius_m.
+/// Nearest neighbours both ways within radius_m. The source grid is built on
+/// the unmoved source, so target points are taken into the source frame
+/// instead of re-hashing the moved source every iteration.
 Correspondences matchBothWays(const std::vector<Eigen::Vector3d>& moved_source,
                               const std::vector<Eigen::Vector3d>& target, const PointGrid& target_grid,
+                              const PointGrid& source_grid, const Eigen::Isometry3d& source_to_target,
                               double radius_m)
 {
   Correspondences matches;
@@ -97,10 +100,10 @@ Correspondences matchBothWays(const std::vector<Eigen::Vector3d>& moved_source,
       pairs.emplace_back(static_cast<int>(i), nearest);
   }
   matches.forward_count = pairs.size();
-  const PointGrid source_grid(moved_source, radius_m);
+  const Eigen::Isometry3d target_to_source = source_to_target.inverse();
   for (std::size_t j = 0; j < target.size(); ++j)
   {
-    const int nearest = source_grid.nearestWithin(target[j], radius_m);
+    const int nearest = source_grid.nearestWithin(target_to_source * target[j], radius_m);
     if (nearest >= 0)
       pairs.emplace_back(nearest, static_cast<int>(j));
   }
@@ -134,7 +137,7 @@ std::optional<Eigen::Isometry3d> hybridStep(const std::vector<Eigen::Vector3d>& 
                                             const std::vector<Eigen::Vector3d>& moved_normals,
                                             const std::vector<Eigen::Vector3d>& target,
                                             const Correspondences& matches, double in_surface_tolerance_m,
-                                            double reverse_in_surface_tolerance_m)
+                                            double reverse_in_surface_tolerance_m, bool forward_point_to_point)
 {
   const auto& pairs = matches.pairs;
   if (pairs.size() < 3)
@@ -177,7 +180,7 @@ std::optional<Eigen::Isometry3d> hybridStep(const std::vector<Eigen::Vector3d>& 
       normal_matrix += row * row.transpose();
       rhs += row * along_normal;
     }
-    else
+    else if (forward_point_to_point || k >= matches.forward_count || !has_normal)
     {
       Eigen::Matrix<double, 3, 6> jacobian;
       jacobian << Eigen::Matrix3d::Identity(), -skew(p);
@@ -225,6 +228,7 @@ Eigen::Isometry3d refineSymmetricIcp(const std::vector<Eigen::Vector3d>& source,
                                               ? options.reverse_in_surface_tolerance_m
                                               : options.in_surface_tolerance_m;
   PointGrid target_grid(target, start_radius_m);
+  PointGrid source_grid(source, start_radius_m);
   double radius_m = start_radius_m;
   Eigen::Isometry3d current = start;
   Twist previous_twist = Twist::Zero();
@@ -236,20 +240,23 @@ Eigen::Isometry3d refineSymmetricIcp(const std::vector<Eigen::Vector3d>& source,
   {
     // Coarse cells make narrow queries scan many points: rebuild as it shrinks.
     if (radius_m < 0.7 * target_grid.maxRadius())
+    {
       target_grid = PointGrid(target, radius_m);
+      source_grid = PointGrid(source, radius_m);
+    }
     for (std::size_t i = 0; i < source.size(); ++i)
     {
       moved_source[i] = current * source[i];
       if (hybrid)
         moved_normals[i] = current.linear() * source_normals[i];
     }
-    const Correspondences pairs = matchBothWays(moved_source, target, target_grid, radius_m);
+    const Correspondences pairs = matchBothWays(moved_source, target, target_grid, source_grid, current, radius_m);
     const bool hybrid_now = hybrid && iteration < options.max_iterations - options.point_to_point_iterations;
     if (hybrid && !hybrid_now && have_previous && iteration == options.max_iterations - options.point_to_point_iterations)
       have_previous = false;  // the step changes nature: no extrapolation across
     const std::optional<Eigen::Isometry3d> step =
         hybrid_now ? hybridStep(moved_source, moved_normals, target, pairs, in_surface_tolerance_m,
-                                reverse_in_surface_tolerance_m)
+                                reverse_in_surface_tolerance_m, options.forward_point_to_point)
                : pointToPointStep(moved_source, target, pairs);
     if (!step)
       break;
