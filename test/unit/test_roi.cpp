@@ -129,7 +129,8 @@ TEST(OrientedBoundingBox, MeasuresRotatedRectangleWithinMillimetres)
 
 TEST(OrientedBoundingBox, DimensionCheckAgainstCatalogue)
 {
-  const BrickType& green = BrickCatalogue::mbzirc2020().at("green");
+  const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
+  const BrickType& green = catalogue.at("green");
   const DimensionTolerance tolerance;
   EXPECT_FALSE(checkTopFaceDimensions(0.61, 0.19, 0.01, green, tolerance));
   EXPECT_FALSE(checkTopFaceDimensions(0.40, 0.20, 0.01, green, tolerance)) << "partly occluded plate";
