@@ -26,6 +26,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <unistd.h>
 #include <functional>
 #include <iostream>
 #include <map>
@@ -398,6 +399,11 @@ int main(int argc, char** argv)
   }
   if (input_errors > 0)
     std::printf("\n%d registrations rejected their input (counted as failures).\n", input_errors);
+  // Wall times (and Super4PCS's wall-clock budget) depend on what else runs.
+  double load[3] = {0.0, 0.0, 0.0};
+  if (getloadavg(load, 3) == 3)
+    std::printf("\nLoad average at the end: %.2f %.2f %.2f on %ld cores; CPU times are per thread.\n", load[0],
+                load[1], load[2], sysconf(_SC_NPROCESSORS_ONLN));
 
   const Summary& s = summaries["s4pcs"];
   std::printf("\n{\"frames\": %d, \"s4pcs_median_ms\": %.3f, \"s4pcs_p95_ms\": %.3f, \"s4pcs_median_cpu_ms\": %.3f, "

@@ -6,9 +6,11 @@
 // congruent 4-point set of the target through the smart pair index, fits a
 // rigid transform to each and keeps the one with the largest common pointset
 // (LCP). Stops when the LCP is good enough, when max_bases bases were tried or
-// when the time budget is spent. The best candidate is finally polished with a
-// few symmetric trimmed ICP iterations (the LCP is flat near the optimum
-// on planar faces, so the raw 4-point pose is only accurate to about delta).
+// when the time budget is spent. The best candidate is finally polished by
+// symmetric trimmed ICP in two stages, coarse then fine (symmetric_icp.h): the
+// LCP is flat near the optimum on flat faces, so the raw 4-point pose is
+// only accurate to about the pair tolerance. The time budget covers the
+// polish too.
 
 #include <cstdint>
 
@@ -39,8 +41,9 @@ struct Super4PCSParams
   /// Tolerance on the angle between the two diagonals; 0 = derived from
   /// delta and the diagonal lengths.
   double max_angle_difference_deg = 0.0;
-  /// Hard budget for the whole call, in seconds.
-  double max_time_s = 0.1;
+  /// Hard budget for the whole call (search and ICP polish), in seconds of
+  /// wall-clock time: on a loaded machine the polish may be cut short.
+  double max_time_s = 0.2;
   /// Upper bound on the bases drawn.
   int max_bases = 200;
   /// Stop once LCP >= good_enough_ratio * overlap.

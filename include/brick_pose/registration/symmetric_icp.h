@@ -15,6 +15,7 @@
 // pairs hold the pose where it is, so sliding along a long face converges
 // very slowly; the hybrid takes the slide from the edges alone.
 
+#include <limits>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -31,6 +32,8 @@ struct SymmetricIcpOptions
   double radius_m = 0.02;
   double final_radius_m = 0.01;
   int max_iterations = 20;  ///< all iterations, including the point-to-point ones
+  /// Wall-clock budget of the call; no new iteration starts after it.
+  double max_time_s = std::numeric_limits<double>::infinity();
   double min_step_m = 1e-5;  ///< convergence: translation of one step
   double min_step_rad = 1e-5;  ///< convergence: rotation of one step
   /// Offsets along the surface up to this are sampling noise (hybrid step).

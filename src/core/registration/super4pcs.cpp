@@ -93,6 +93,179 @@ bool normalsMapped(const Eigen::Isometry3d& transform, const CoplanarBase& base,
       return false;
   return true;
 }
+/// The samples the search works on and the scales derived from them.
+struct SearchInput
+{
+  PointSet source_sample;
+  PointSet target_sample;
+  bool use_normals = false;
+  SearchScales scales;
+};
+
+/// The best candidate of the search and why the search stopped.
+struct SearchOutcome
+{
+  double best_score = -1.0;  ///< negative when no candidate passed the fit
+  Eigen::Isometry3d best_transform = Eigen::Isometry3d::Identity();
+  std::string stop_reason;
+};
+
+SearchScales measureScales(const PointSet& source_sample, const PointSet& target_sample, const PointSet& target,
+                           const Super4PCSParams& params, std::mt19937_64& rng)
+{
+  SearchScales scales;
+  // A base point's counterpart in the target sample is up to about half the
+  // sample spacing away, so tolerances finer than that would miss true sets.
+  scales.target_sample_spacing_m = neighbourSpacing(target_sample.points, 0.5, rng);
+  scales.pair_tolerance_m = std::max(params.delta_m, 0.5 * scales.target_sample_spacing_m);
+  // The LCP radius must let almost every source point that lies on the
+  // target's surface find a target point, or the score of the right pose
+  // depends on sampling luck (and maximising it favours poses that happen to
+  // interlock the two samplings). A multiple of the median rather than a high
+  // quantile: outliers have far neighbours and would inflate a quantile.
+  scales.lcp_radius_m = std::max(params.delta_m, kLcpRadiusPerSpacing * neighbourSpacing(target.points, 0.5, rng));
+  scales.source_diameter_m = approximateDiameter(source_sample.points, rng);
+  return scales;
+}
+
+CongruenceTolerances tolerancesFor(const CoplanarBase& base, const SearchScales& scales,
+                                   const Super4PCSParams& params)
+{
+  CongruenceTolerances tolerances;
+  tolerances.distance_m = scales.pair_tolerance_m;
+  tolerances.normal_rad = params.max_normal_difference_deg * kDegToRad;
+  // A pair direction is known to about twice the tolerance over its length.
+  tolerances.angle_rad = params.max_angle_difference_deg > 0.0
+                             ? params.max_angle_difference_deg * kDegToRad
+                             : std::atan(2.0 * scales.pair_tolerance_m / std::min(base.r1_m(), base.r2_m()));
+  return tolerances;
+}
+
+/// Draws bases and verifies their congruent sets until the LCP is good
+/// enough, the bases run out or the time budget is spent. Counts bases and
+/// verified candidates into `result`.
+SearchOutcome searchCongruentSets(const SearchInput& input, const LcpScorer& scorer, const Super4PCSParams& params,
+                                  Clock::time_point start, std::mt19937_64& rng, RegistrationResult& result)
+{
+  const ShellPairIndex pair_index(input.target_sample.points, input.scales.pair_tolerance_m);
+  const CongruentSetFinder finder(input.target_sample, pair_index);
+  BaseSelectionLimits limits;
+  limits.max_diameter_m = params.overlap * input.scales.source_diameter_m;
+  limits.coplanar_tolerance_m = 0.5 * input.scales.pair_tolerance_m;
+  const double stop_score = params.good_enough_ratio * params.overlap;
+  const double max_fit_rms_m = params.max_fit_rms_factor * input.scales.pair_tolerance_m;
+
+  SearchOutcome outcome;
+  int base_draw_failures = 0;
+  std::vector<Eigen::Vector3d> base_points(4);
+  std::vector<Eigen::Vector3d> set_points(4);
+  while (outcome.stop_reason.empty())
+  {
+    if (result.bases_tried >= params.max_bases)
+    {
+      outcome.stop_reason = "all " + std::to_string(params.max_bases) + " bases tried";
+      break;
+    }
+    if (secondsSince(start) >= params.max_time_s)
+    {
+      outcome.stop_reason = "time budget exhausted";
+      break;
+    }
+    const std::optional<CoplanarBase> base = drawCoplanarBase(input.source_sample, limits, rng);
+    if (!base)
+    {
+      if (++base_draw_failures >= kMaxBaseDrawFailures)
+        outcome.stop_reason = "no wide coplanar 4-point base found in the source";
+      continue;
+    }
+    base_draw_failures = 0;
+    ++result.bases_tried;
+    const CongruenceTolerances tolerances = tolerancesFor(*base, input.scales, params);
+    for (int k = 0; k < 4; ++k)
+      base_points[k] = base->points[k];
+
+    int since_clock = 0;
+    finder.find(*base, tolerances, [&](const CongruentSet& set) {
+      if (++since_clock >= kClockStride)
+      {
+        since_clock = 0;
+        if (secondsSince(start) >= params.max_time_s)
+        {
+          outcome.stop_reason = "time budget exhausted";
+          return false;
+        }
+      }
+      for (int k = 0; k < 4; ++k)
+        set_points[k] = input.target_sample.points[set[k]];
+      const RigidFit fit = fitRigid(base_points, set_points);
+      if (!fit.valid || fit.rms_m > max_fit_rms_m)
+        return true;
+      if (input.use_normals && !normalsMapped(fit.transform, *base, input.target_sample, set, tolerances.normal_rad))
+        return true;
+      ++result.candidates_verified;
+      const double score = scorer.score(fit.transform, outcome.best_score);
+      if (score > outcome.best_score)
+      {
+        outcome.best_score = score;
+        outcome.best_transform = fit.transform;
+      }
+      if (outcome.best_score >= stop_score)
+      {
+        outcome.stop_reason = "good-enough LCP reached";
+        return false;
+      }
+      return true;
+    });
+  }
+  return outcome;
+}
+
+/// Coarse ICP stage on moderate samples from the 4-point pose (wide radius,
+/// fast slides), then a short fine stage on dense samples: ICP on a face is
+/// only as precise as its samples resolve the face's edges, and dense samples
+/// cost too much to start with. Both stages stop at the time budget.
+Eigen::Isometry3d polishWithIcp(const PointSet& source, const PointSet& target, const Eigen::Isometry3d& start_pose,
+                                const SearchScales& scales, const Super4PCSParams& params, Clock::time_point start,
+                                std::mt19937_64& rng)
+{
+  Eigen::Isometry3d refined = start_pose;
+  // Wide enough to reach from a 4-point pose that is off by the pair
+  // tolerance at the base's ends or by several degrees in the plane of a face
+  // (which the LCP hardly sees).
+  double start_radius_m = std::max(3.0 * scales.pair_tolerance_m, 0.08 * scales.source_diameter_m);
+  const std::array<RefineStage, 2> stages{{
+      {params.refine_source_sample_size, params.refine_sample_size, params.refine_iterations},
+      {params.fine_refine_source_sample_size, params.fine_refine_sample_size, params.fine_refine_iterations},
+  }};
+  for (const RefineStage& stage : stages)
+  {
+    const double remaining_s = params.max_time_s - secondsSince(start);
+    if (stage.iterations <= 0 || remaining_s <= 0.0)
+      continue;
+    PointSet refine_source = source.subset(uniformSubsample(source.points, stage.source_sample_size, rng));
+    const std::vector<Eigen::Vector3d> refine_target =
+        target.subset(uniformSubsample(target.points, stage.target_sample_size, rng)).points;
+    if (!refine_source.hasNormals())
+      refine_source.normals = estimateNormals(
+          refine_source.points, kNormalRadiusPerSpacing * neighbourSpacing(refine_source.points, 0.5, rng));
+    const double target_spacing_m = neighbourSpacing(refine_target, 0.5, rng);
+    SymmetricIcpOptions icp;
+    icp.final_radius_m = std::max(1.5 * scales.lcp_radius_m, 1.5 * target_spacing_m);  // the LCP's resolution
+    icp.radius_m = std::max(start_radius_m, icp.final_radius_m);
+    icp.in_surface_tolerance_m = std::max(params.delta_m, target_spacing_m);
+    icp.final_in_surface_tolerance_m = icp.in_surface_tolerance_m;
+    icp.reverse_in_surface_tolerance_m =
+        std::max(params.delta_m, kReverseTolerancePerSpacing * neighbourSpacing(refine_source.points, 0.5, rng));
+    icp.max_iterations = stage.iterations;
+    icp.max_time_s = remaining_s;
+    // Steps below a fiftieth of the accuracy change nothing that matters.
+    icp.min_step_m = 0.02 * params.delta_m;
+    icp.min_step_rad = icp.min_step_m / std::max(scales.source_diameter_m, 1e-9);
+    refined = refineSymmetricIcp(refine_source.points, refine_source.normals, refine_target, refined, icp);
+    start_radius_m = 2.0 * icp.final_radius_m;  // the next stage starts close
+  }
+  return refined;
+}
 }  // namespace
 
 void Super4PCSParams::validate() const
@@ -143,116 +316,24 @@ RegistrationResult Super4PCS::align(const PointSet& source, const PointSet& targ
   validateRegistrationInput(target, "target");
 
   std::mt19937_64 rng(params_.seed);
-  const bool use_normals = source.hasNormals() && target.hasNormals();
-  PointSet source_sample = source.subset(uniformSubsample(source.points, params_.sample_size, rng));
-  PointSet target_sample = target.subset(uniformSubsample(target.points, params_.sample_size, rng));
-  if (!use_normals)
+  SearchInput input;
+  input.source_sample = source.subset(uniformSubsample(source.points, params_.sample_size, rng));
+  input.target_sample = target.subset(uniformSubsample(target.points, params_.sample_size, rng));
+  input.use_normals = source.hasNormals() && target.hasNormals();
+  if (!input.use_normals)
   {
-    source_sample.normals.clear();
-    target_sample.normals.clear();
+    input.source_sample.normals.clear();
+    input.target_sample.normals.clear();
   }
   const std::vector<Eigen::Vector3d> lcp_sample =
       source.subset(uniformSubsample(source.points, params_.lcp_sample_size, rng)).points;
-
-  SearchScales scales;
-  // A base point's counterpart in the target sample is up to about half the
-  // sample spacing away, so tolerances finer than that would miss true sets.
-  scales.target_sample_spacing_m = neighbourSpacing(target_sample.points, 0.5, rng);
-  scales.pair_tolerance_m = std::max(params_.delta_m, 0.5 * scales.target_sample_spacing_m);
-  // The LCP radius must let almost every source point that lies on the
-  // target's surface find a target point, or the score of the right pose
-  // depends on sampling luck (and maximising it favours poses that happen to
-  // interlock the two samplings).
-  // A multiple of the median rather than a high quantile: outliers have far
-  // neighbours and would inflate a quantile.
-  scales.lcp_radius_m = std::max(params_.delta_m, kLcpRadiusPerSpacing * neighbourSpacing(target.points, 0.5, rng));
-  scales.source_diameter_m = approximateDiameter(source_sample.points, rng);
-
-  const ShellPairIndex pair_index(target_sample.points, scales.pair_tolerance_m);
-  const CongruentSetFinder finder(target_sample, pair_index);
-  const LcpScorer scorer(lcp_sample, target.points, scales.lcp_radius_m);
-
-  BaseSelectionLimits limits;
-  limits.max_diameter_m = params_.overlap * scales.source_diameter_m;
-  limits.coplanar_tolerance_m = 0.5 * scales.pair_tolerance_m;
-  const double stop_score = params_.good_enough_ratio * params_.overlap;
-  const double max_fit_rms_m = params_.max_fit_rms_factor * scales.pair_tolerance_m;
+  input.scales = measureScales(input.source_sample, input.target_sample, target, params_, rng);
+  const LcpScorer scorer(lcp_sample, target.points, input.scales.lcp_radius_m);
 
   RegistrationResult result;
-  double best_score = -1.0;
-  Eigen::Isometry3d best_transform = Eigen::Isometry3d::Identity();
-  std::string stop_reason;
-  int base_draw_failures = 0;
-  std::vector<Eigen::Vector3d> base_points(4);
-  std::vector<Eigen::Vector3d> set_points(4);
-
-  while (stop_reason.empty())
-  {
-    if (result.bases_tried >= params_.max_bases)
-    {
-      stop_reason = "all " + std::to_string(params_.max_bases) + " bases tried";
-      break;
-    }
-    if (secondsSince(start) >= params_.max_time_s)
-    {
-      stop_reason = "time budget exhausted";
-      break;
-    }
-    const std::optional<CoplanarBase> base = drawCoplanarBase(source_sample, limits, rng);
-    if (!base)
-    {
-      if (++base_draw_failures >= kMaxBaseDrawFailures)
-        stop_reason = "no wide coplanar 4-point base found in the source";
-      continue;
-    }
-    base_draw_failures = 0;
-    ++result.bases_tried;
-
-    CongruenceTolerances tolerances;
-    tolerances.distance_m = scales.pair_tolerance_m;
-    tolerances.normal_rad = params_.max_normal_difference_deg * kDegToRad;
-    tolerances.angle_rad = params_.max_angle_difference_deg > 0.0
-                               ? params_.max_angle_difference_deg * kDegToRad
-                               : std::atan(2.0 * scales.pair_tolerance_m / std::min(base->r1_m(), base->r2_m()));
-    for (int k = 0; k < 4; ++k)
-      base_points[k] = base->points[k];
-
-    int since_clock = 0;
-    finder.find(*base, tolerances, [&](const CongruentSet& set) {
-      if (++since_clock >= kClockStride)
-      {
-        since_clock = 0;
-        if (secondsSince(start) >= params_.max_time_s)
-        {
-          stop_reason = "time budget exhausted";
-          return false;
-        }
-      }
-      for (int k = 0; k < 4; ++k)
-        set_points[k] = target_sample.points[set[k]];
-      const RigidFit fit = fitRigid(base_points, set_points);
-      if (!fit.valid || fit.rms_m > max_fit_rms_m)
-        return true;
-      if (use_normals && !normalsMapped(fit.transform, *base, target_sample, set, tolerances.normal_rad))
-        return true;
-      ++result.candidates_verified;
-      const double score = scorer.score(fit.transform, best_score);
-      if (score > best_score)
-      {
-        best_score = score;
-        best_transform = fit.transform;
-      }
-      if (best_score >= stop_score)
-      {
-        stop_reason = "good-enough LCP reached";
-        return false;
-      }
-      return true;
-    });
-  }
-
-  result.reason = stop_reason;
-  if (best_score < 0.0)
+  SearchOutcome search = searchCongruentSets(input, scorer, params_, start, rng, result);
+  result.reason = search.stop_reason;
+  if (search.best_score < 0.0)
   {
     result.success = false;
     result.reason += "; no congruent 4-point set found";
@@ -261,57 +342,24 @@ RegistrationResult Super4PCS::align(const PointSet& source, const PointSet& targ
   }
   if (params_.refine_iterations > 0)
   {
-    // Coarse stage on moderate samples from the 4-point pose (wide radius,
-    // fast slides), then a short fine stage on dense samples: ICP on a face is
-    // only as precise as its samples resolve the face's edges, and dense
-    // samples cost too much to start with.
-    Eigen::Isometry3d refined = best_transform;
-    double start_radius_m = std::max({3.0 * scales.pair_tolerance_m, 0.08 * scales.source_diameter_m});
-    const std::array<RefineStage, 2> stages{{
-        {params_.refine_source_sample_size, params_.refine_sample_size, params_.refine_iterations},
-        {params_.fine_refine_source_sample_size, params_.fine_refine_sample_size, params_.fine_refine_iterations},
-    }};
-    for (const RefineStage& stage : stages)
-    {
-      if (stage.iterations <= 0)
-        continue;
-      PointSet refine_source = source.subset(uniformSubsample(source.points, stage.source_sample_size, rng));
-      const std::vector<Eigen::Vector3d> refine_target =
-          target.subset(uniformSubsample(target.points, stage.target_sample_size, rng)).points;
-      if (!refine_source.hasNormals())
-        refine_source.normals = estimateNormals(
-            refine_source.points, kNormalRadiusPerSpacing * neighbourSpacing(refine_source.points, 0.5, rng));
-      const double target_spacing_m = neighbourSpacing(refine_target, 0.5, rng);
-      SymmetricIcpOptions icp;
-      // Finish at the LCP's resolution.
-      icp.final_radius_m = std::max(1.5 * scales.lcp_radius_m, 1.5 * target_spacing_m);
-      icp.radius_m = std::max(start_radius_m, icp.final_radius_m);
-      icp.in_surface_tolerance_m = std::max(params_.delta_m, target_spacing_m);
-      icp.final_in_surface_tolerance_m = icp.in_surface_tolerance_m;
-      icp.reverse_in_surface_tolerance_m =
-          std::max(params_.delta_m, kReverseTolerancePerSpacing * neighbourSpacing(refine_source.points, 0.5, rng));
-      icp.max_iterations = stage.iterations;
-      // Steps below a fiftieth of the accuracy change nothing that matters.
-      icp.min_step_m = 0.02 * params_.delta_m;
-      icp.min_step_rad = icp.min_step_m / std::max(scales.source_diameter_m, 1e-9);
-      refined = refineSymmetricIcp(refine_source.points, refine_source.normals, refine_target, refined, icp);
-      start_radius_m = 2.0 * icp.final_radius_m;  // the next stage starts close
-    }
+    const Eigen::Isometry3d refined =
+        polishWithIcp(source, target, search.best_transform, input.scales, params_, start, rng);
     const double refined_score = scorer.score(refined);
     // ICP cannot be trusted to raise the LCP on flat faces (it slides), but a
     // clear drop means it was pulled by clutter: then keep the 4-point pose.
-    if (refined_score >= best_score - 0.02)
+    if (refined_score >= search.best_score - 0.02)
     {
-      best_transform = refined;
-      best_score = refined_score;
+      search.best_transform = refined;
+      search.best_score = refined_score;
     }
   }
-  result.source_to_target = best_transform;
-  result.lcp_score = best_score;
+  result.source_to_target = search.best_transform;
+  result.lcp_score = search.best_score;
   const double accept_score = params_.min_success_ratio * params_.overlap;
-  result.success = best_score >= accept_score;
+  result.success = search.best_score >= accept_score;
   if (!result.success)
-    result.reason += "; best LCP " + formatScore(best_score) + " below the acceptance " + formatScore(accept_score);
+    result.reason +=
+        "; best LCP " + formatScore(search.best_score) + " below the acceptance " + formatScore(accept_score);
   result.elapsed_s = secondsSince(start);
   return result;
 }

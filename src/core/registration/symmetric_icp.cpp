@@ -1,6 +1,7 @@
 #include "brick_pose/registration/symmetric_icp.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <optional>
 #include <utility>
@@ -236,8 +237,11 @@ Eigen::Isometry3d refineSymmetricIcp(const std::vector<Eigen::Vector3d>& source,
   std::vector<Eigen::Vector3d> moved_source(source.size());
   std::vector<Eigen::Vector3d> moved_normals(hybrid ? source.size() : 0);
 
+  const auto started = std::chrono::steady_clock::now();
   for (int iteration = 0; iteration < options.max_iterations; ++iteration)
   {
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >= options.max_time_s)
+      break;
     // Coarse cells make narrow queries scan many points: rebuild as it shrinks.
     if (radius_m < 0.7 * target_grid.maxRadius())
     {
