@@ -370,6 +370,10 @@ TEST(Super4PCS, RejectsDegenerateInputWithAClearMessage)
   with_inf.points[3].z() = std::numeric_limits<double>::infinity();
   expectInputError(good, with_inf, "NaN/Inf coordinate at point 3");
 
+  PointSet far_away = good;
+  far_away.points[5].x() = 3.0e9;  // millimetres read as metres, say
+  expectInputError(good, far_away, "beyond 1e6 m at point 5");
+
   PointSet bad_normals = good;
   bad_normals.normals.pop_back();
   expectInputError(bad_normals, good, "normals for");

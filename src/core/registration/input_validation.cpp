@@ -18,11 +18,18 @@ namespace
   throw InputError(cloud_name + " cloud " + problem);
 }
 
+// Far beyond any camera's range; bounding coordinates keeps grid indices exact.
+constexpr double kMaxCoordinateM = 1.0e6;
+
 void checkFinite(const PointSet& cloud, const std::string& cloud_name)
 {
   for (std::size_t i = 0; i < cloud.size(); ++i)
+  {
     if (!cloud.points[i].allFinite())
       reject(cloud_name, "has a NaN/Inf coordinate at point " + std::to_string(i));
+    if (cloud.points[i].cwiseAbs().maxCoeff() > kMaxCoordinateM)
+      reject(cloud_name, "has a coordinate beyond 1e6 m at point " + std::to_string(i) + " (wrong units?)");
+  }
   if (!cloud.hasNormals())
     return;
   if (cloud.normals.size() != cloud.points.size())

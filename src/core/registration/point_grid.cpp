@@ -15,6 +15,14 @@ namespace
 constexpr std::int64_t kAxisMask = (std::int64_t(1) << 21) - 1;
 
 std::uint64_t hashKey(std::uint64_t key) { return key * 0x9E3779B97F4A7C15ull; }
+
+/// Cell index of a scaled coordinate; clamped so that absurd coordinates
+/// cannot overflow the conversion (wrapping cells only cost extra checks).
+std::int64_t cellIndex(double scaled)
+{
+  constexpr double kLimit = 4.0e15;
+  return static_cast<std::int64_t>(std::floor(std::clamp(scaled, -kLimit, kLimit)));
+}
 }  // namespace
 
 // Coordinates wrap at 2^21 cells per axis; a wrapped collision only adds
@@ -37,9 +45,8 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double max_radi
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
   {
-    const Eigen::Vector3d cell = (points[i] * inv_cell_size_).array().floor();
-    keyed[i] = {packKey(static_cast<std::int64_t>(cell.x()), static_cast<std::int64_t>(cell.y()),
-                        static_cast<std::int64_t>(cell.z())),
+    const Eigen::Vector3d scaled = points[i] * inv_cell_size_;
+    keyed[i] = {packKey(cellIndex(scaled.x()), cellIndex(scaled.y()), cellIndex(scaled.z())),
                 static_cast<std::uint32_t>(i)};
   }
   std::sort(keyed.begin(), keyed.end());
@@ -89,10 +96,9 @@ void PointGrid::blockAround(const Eigen::Vector3d& query, std::uint64_t keys[8])
   for (int axis = 0; axis < 3; ++axis)
   {
     const double scaled = query[axis] * inv_cell_size_;
-    const double cell = std::floor(scaled);
     // The query ball (radius <= half a cell) reaches the lower neighbour only
     // when the query sits in the lower half of its cell, the upper otherwise.
-    low[axis] = static_cast<std::int64_t>(cell) - (scaled - cell < 0.5 ? 1 : 0);
+    low[axis] = cellIndex(scaled) - (scaled - std::floor(scaled) < 0.5 ? 1 : 0);
   }
   int k = 0;
   for (int dx = 0; dx < 2; ++dx)

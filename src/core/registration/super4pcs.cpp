@@ -272,8 +272,10 @@ void Super4PCSParams::validate() const
 {
   if (!(overlap > 0.0 && overlap <= 1.0))
     throw ConfigError("Super4PCSParams.overlap must be in (0, 1], got " + std::to_string(overlap));
-  if (!(delta_m > 0.0 && std::isfinite(delta_m)))
-    throw ConfigError("Super4PCSParams.delta_m must be positive, got " + std::to_string(delta_m));
+  // Below a micrometre no sensor is that accurate and grid indices would
+  // lose their meaning.
+  if (!(delta_m >= 1e-6 && delta_m <= 1e3))
+    throw ConfigError("Super4PCSParams.delta_m must be in [1e-6, 1e3] m, got " + std::to_string(delta_m));
   if (sample_size < 4)
     throw ConfigError("Super4PCSParams.sample_size must be at least 4, got " + std::to_string(sample_size));
   if (lcp_sample_size < 1)

@@ -14,7 +14,8 @@ namespace
 std::uint64_t voxelKey(const Eigen::Vector3d& p, double inv_voxel)
 {
   constexpr std::int64_t mask = (std::int64_t(1) << 21) - 1;
-  const Eigen::Vector3d cell = (p * inv_voxel).array().floor();
+  constexpr double kLimit = 4.0e15;  // keeps the conversion to integer defined
+  const Eigen::Vector3d cell = (p * inv_voxel).array().max(-kLimit).min(kLimit).floor();
   return (static_cast<std::uint64_t>(static_cast<std::int64_t>(cell.x()) & mask) << 42) |
          (static_cast<std::uint64_t>(static_cast<std::int64_t>(cell.y()) & mask) << 21) |
          static_cast<std::uint64_t>(static_cast<std::int64_t>(cell.z()) & mask);
