@@ -248,6 +248,9 @@ Eigen::Isometry3d polishWithIcp(const PointSet& source, const PointSet& target, 
     if (!refine_source.hasNormals())
       refine_source.normals = estimateNormals(
           refine_source.points, kNormalRadiusPerSpacing * neighbourSpacing(refine_source.points, 0.5, rng));
+    for (Eigen::Vector3d& normal : refine_source.normals)  // callers' normals need not be unit
+      if (normal.squaredNorm() > 0.0)
+        normal.normalize();
     const double target_spacing_m = neighbourSpacing(refine_target, 0.5, rng);
     SymmetricIcpOptions icp;
     icp.final_radius_m = std::max(1.5 * scales.lcp_radius_m, 1.5 * target_spacing_m);  // the LCP's resolution
