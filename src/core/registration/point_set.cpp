@@ -70,9 +70,15 @@ pcl::PointCloud<pcl::PointNormal> toPclPointNormal(const PointSet& set)
   cloud.reserve(set.size());
   for (std::size_t i = 0; i < set.size(); ++i)
   {
+    const Eigen::Vector3f point = set.points[i].cast<float>();
+    const Eigen::Vector3f normal = set.hasNormals() ? Eigen::Vector3f(set.normals[i].cast<float>()) : Eigen::Vector3f::Zero();
     pcl::PointNormal p;
-    p.getVector3fMap() = set.points[i].cast<float>();
-    p.getNormalVector3fMap() = set.hasNormals() ? Eigen::Vector3f(set.normals[i].cast<float>()) : Eigen::Vector3f::Zero();
+    p.x = point.x();
+    p.y = point.y();
+    p.z = point.z();
+    p.normal_x = normal.x();
+    p.normal_y = normal.y();
+    p.normal_z = normal.z();
     p.curvature = 0.0f;
     cloud.push_back(p);
   }
