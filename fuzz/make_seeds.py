@@ -98,7 +98,6 @@ write("fuzz_front_end", "occluded_plate",
       front_end_seed([(18, 26, 77, 45, GREEN, 1000, 0, 0), (45, 20, 49, 50, RAW, 900, 0, 0)]))
 write("fuzz_front_end", "region_growing", front_end_seed([(18, 26, 77, 45, GREEN, 1000, 0, 0)], region_growing=True))
 write("fuzz_front_end", "default_thresholds", front_end_seed([(10, 10, 89, 69, BLUE, 700, 0, 0)], scaled=False))
-write("fuzz_front_end", "one_pixel", front_end_seed([], width=1, height=1))
 
 
 # --- fuzz_frame_builder: small valid frames of each encoding pair ---------

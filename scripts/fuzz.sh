@@ -52,18 +52,23 @@ for target in "${targets[@]}"; do
   fi
 
   echo "== $target: ${seconds} s"
+  rm -f "$artifacts"/crash-* "$artifacts"/leak-* "$artifacts"/timeout-* "$artifacts"/oom-*
+  # -fork=1 -ignore_crashes=1: keep fuzzing after a crash, so that one known
+  # bug does not hide the others; the verdict comes from the saved artifacts.
   # -timeout: one input taking 10 s is a hang (Super4PCS has a 20 ms budget).
   # -rss_limit_mb: a frame of a few kB must not need gigabytes.
-  "$binary" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 -print_final_stats=1 \
+  "$binary" -fork=1 -ignore_crashes=1 -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
     -artifact_prefix="$artifacts/" "$work_corpus" "$root/fuzz/corpus/$target" >"$artifacts/fuzz.log" 2>&1
   rc=$?
-  runs=$(grep -oE 'stat::number_of_executed_units: *[0-9]+' "$artifacts/fuzz.log" | grep -oE '[0-9]+$' || echo "?")
-  if [[ $rc -ne 0 ]]; then
-    echo "fuzz: $target CRASHED (exit $rc), input(s): $(ls "$artifacts" | grep -vE '\.log$' | tr '\n' ' ')"
-    grep -m1 -E "ERROR: |runtime error:|deadly signal|uncaught|Assertion" "$artifacts/fuzz.log" || true
-    summary+=("$target: CRASH after $runs runs (see $artifacts/fuzz.log)"); status=1
+  runs=$(grep -oE '#[0-9]+' "$artifacts/fuzz.log" | tail -1 | tr -d '#')
+  found=$(find "$artifacts" -maxdepth 1 -type f \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)
+  if [[ $found -gt 0 || ( $rc -ne 0 && $rc -ne 1 ) ]]; then
+    echo "fuzz: $target: $found crashing input(s) in $artifacts (exit $rc); distinct reports:"
+    grep -hoE "what\(\): .*|runtime error: .*|ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer): [a-z-]+" "$artifacts/fuzz.log" \
+      | sort | uniq -c | sort -rn | head -5
+    summary+=("$target: $found CRASHING INPUT(S) after ~${runs:-?} runs (see $artifacts/fuzz.log)"); status=1
   else
-    summary+=("$target: clean, $runs runs in ${seconds} s")
+    summary+=("$target: clean, ~${runs:-?} runs in ${seconds} s")
   fi
 done
 echo "== fuzz summary"
