@@ -54,6 +54,8 @@ double readPositive(const cv::FileNode& node, const std::string& field, const st
 
 BrickType parseBrick(const cv::FileNode& node)
 {
+  if (!node.isMap())
+    throw ConfigError("brick catalogue: every entry of 'bricks' must be a map of name, length_m, ...");
   BrickType type;
   if (!node["name"].isString())
     throw ConfigError("brick catalogue: every brick needs a string 'name'");
@@ -138,12 +140,23 @@ BrickCatalogue BrickCatalogue::mbzirc2020()
 BrickCatalogue BrickCatalogue::fromYamlString(const std::string& text)
 {
   cv::FileStorage storage = openYamlText(text);
-  const cv::FileNode bricks = storage["bricks"];
-  if (bricks.empty() || !bricks.isSeq())
-    throw ConfigError("brick catalogue: expected a top-level list 'bricks:'");
   std::vector<BrickType> types;
-  for (const cv::FileNode& node : bricks)
-    types.push_back(parseBrick(node));
+  // OpenCV asserts (cv::Exception) on lookups in nodes of the wrong kind;
+  // the checks below come first, the catch is for what they do not foresee.
+  try
+  {
+    if (!storage.root().isMap())
+      throw ConfigError("brick catalogue: expected a map with a top-level list 'bricks:'");
+    const cv::FileNode bricks = storage["bricks"];
+    if (bricks.empty() || !bricks.isSeq())
+      throw ConfigError("brick catalogue: expected a top-level list 'bricks:'");
+    for (const cv::FileNode& node : bricks)
+      types.push_back(parseBrick(node));
+  }
+  catch (const cv::Exception& e)
+  {
+    throw ConfigError(std::string("brick catalogue: malformed YAML: ") + e.what());
+  }
   return BrickCatalogue(std::move(types));
 }
 

@@ -182,6 +182,9 @@ std::vector<Segment> HsvSegmenter::segment(const RgbdFrame& frame, const BrickCa
 {
   const int factor = params_.coarse_factor;
   const cv::Size image_size = frame.rgb.size();
+  // No plate fits an image smaller than the smallest segment, and the coarse
+  // search cannot shrink an image thinner than its factor.
+  if (image_size.width < factor || image_size.height < factor || image_size.area() < params_.min_area_px) return {};
   cv::Mat coarse_rgb, coarse_hsv;
   if (factor > 1)
     cv::resize(frame.rgb, coarse_rgb, cv::Size(), 1.0 / factor, 1.0 / factor, cv::INTER_NEAREST);
