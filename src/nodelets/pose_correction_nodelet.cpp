@@ -293,18 +293,29 @@ private:
     const std::optional<Eigen::Isometry3d> camera_T_target = targetFrameInCamera(request.target_frame, *detections);
     std::optional<Eigen::Vector3d> up_in_camera;
     if (camera_T_target) up_in_camera = camera_T_target->linear().col(2);
-    const std::vector<DetectedBrick> bricks = detectedBricksOf(*detections);
-    const std::optional<std::size_t> chosen = request.frame.empty()
-                                                  ? selectBrick(bricks, policy, request.type, up_in_camera)
-                                                  : findFrame(*detections, request.frame);
-    if (!chosen)
-      throw InputError("no " + std::string(request.type.empty() ? "" : request.type + " ") + "brick" +
-                       (policy == SelectionPolicy::kPickable ? " that nothing rests on" : "") +
-                       " in the latest frame (seen: " + typeCounts(*detections) + ")");
-    fillResponse(detections->detections[*chosen], *detections, camera_T_target, request.target_frame, response);
+    const std::size_t chosen = request.frame.empty() ? choose(*detections, policy, request.type, up_in_camera)
+                                                     : findFrame(*detections, request.frame);
+    fillResponse(detections->detections[chosen], *detections, camera_T_target, request.target_frame, response);
   }
 
-  static std::optional<std::size_t> findFrame(const BrickDetectionArray& detections, const std::string& frame)
+  /// Picks by policy among the bricks whose whole top face was measured: a
+  /// partly hidden face gives a good orientation but a guessed centre, not
+  /// something to grasp. They can still be asked for by their frame name.
+  static std::size_t choose(const BrickDetectionArray& detections, SelectionPolicy policy, const std::string& type,
+                            const std::optional<Eigen::Vector3d>& up_in_camera)
+  {
+    // Every brick counts for covering others; only complete ones can be chosen.
+    const std::vector<DetectedBrick> bricks = detectedBricksOf(detections);
+    const bool pickable_only = policy == SelectionPolicy::kPickable;
+    const std::vector<bool> pickable = pickable_only ? pickableMask(bricks, up_in_camera) : std::vector<bool>();
+    for (std::size_t index : orderBricks(bricks, policy, type, up_in_camera))
+      if (detections.detections[index].complete_face && (!pickable_only || pickable[index])) return index;
+    throw InputError("no " + std::string(type.empty() ? "" : type + " ") + "brick" +
+                     (policy == SelectionPolicy::kPickable ? " that nothing rests on" : "") +
+                     " with its whole top face in view in the latest frame (seen: " + typeCounts(detections) + ")");
+  }
+
+  static std::size_t findFrame(const BrickDetectionArray& detections, const std::string& frame)
   {
     for (std::size_t i = 0; i < detections.detections.size(); ++i)
       if (detections.detections[i].frame == frame) return i;

@@ -47,6 +47,13 @@ const brick_pose::BrickTruth* matchTruth(const brick_pose::BrickTruthArray& trut
   return best;
 }
 
+/// "pickable", "covered" or "partial" (top face not wholly in view: its centre is a guess).
+const char* faceState(const brick_pose::BrickDetection& detection)
+{
+  if (!detection.complete_face) return "partial";
+  return detection.pickable ? "pickable" : "covered";
+}
+
 void printStreams(const brick_pose::BrickDetectionArray& detections)
 {
   std::printf("\nThe synthetic D415 publishes /camera/color/image_raw (rgb8), /camera/aligned_depth_to_color/image_raw\n"
@@ -75,7 +82,7 @@ int run(ros::NodeHandle& node, const Options& options)
     std::fprintf(stderr, "brick_pose_demo: service %s not available\n", options.service.c_str());
     return 1;
   }
-  std::printf("\n%-18s %-9s %24s %24s %9s %9s %8s\n", "brick (service)", "pickable", "estimate x y z [m]",
+  std::printf("\n%-18s %-9s %24s %24s %9s %9s %8s\n", "brick (service)", "face", "estimate x y z [m]",
               "truth x y z [m]", "rot [deg]", "pos [mm]", "fitness");
   int answered = 0;
   for (const auto& detection : detections->detections)
@@ -93,7 +100,7 @@ int run(ros::NodeHandle& node, const Options& options)
     const Eigen::Vector3d& p = estimate.translation();
     if (match == nullptr)
     {
-      std::printf("%-18s %-9s %8.3f %7.3f %7.3f %24s\n", call.response.frame.c_str(), detection.pickable ? "yes" : "no",
+      std::printf("%-18s %-9s %8.3f %7.3f %7.3f %24s\n", call.response.frame.c_str(), faceState(detection),
                   p.x(), p.y(), p.z(), "(no matching truth)");
       continue;
     }
@@ -101,12 +108,19 @@ int run(ros::NodeHandle& node, const Options& options)
     const auto error = brick_pose::registration::poseErrorModuloSymmetry(estimate, truth_pose);
     const Eigen::Vector3d& t = truth_pose.translation();
     std::printf("%-18s %-9s %8.3f %7.3f %7.3f %8.3f %7.3f %7.3f %9.2f %9.2f %8.2f\n", call.response.frame.c_str(),
-                detection.pickable ? "yes" : "no", p.x(), p.y(), p.z(), t.x(), t.y(), t.z(), error.rotation_deg,
+                faceState(detection), p.x(), p.y(), p.z(), t.x(), t.y(), t.z(), error.rotation_deg,
                 error.translation_mm(), call.response.fitness);
   }
+  std::printf("(partial: the top face is not wholly in view, so its centre is a guess; the service's policies\n"
+              " choose only among whole faces)\n");
   for (const auto& brick : truth->bricks)
     std::printf("  truth_%s_%d: %.0f%% of its top face visible\n", brick.type.c_str(), brick.instance_id,
                 100.0 * brick.visible_fraction);
+  brick_pose::GetBrickPose pick;
+  pick.request.policy = "pickable";
+  ros::service::call(options.service, pick);
+  std::printf("\nget_brick_pose(policy: pickable) -> %s: %s\n", pick.response.success ? "success" : "failure",
+              pick.response.message.c_str());
   brick_pose::GetBrickPose absent;
   absent.request.type = "purple";
   ros::service::call(options.service, absent);
