@@ -17,6 +17,11 @@ jobs=${FUZZ_BUILD_JOBS:-2}
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
 
+# Eigen switches to its own aligned malloc (offset stored before each block)
+# under AddressSanitizer, while the prebuilt PCL frees and allocates with
+# plain malloc: clouds crossing the boundary then look like heap overflows in
+# handmade_aligned_free. Keep the ABI of the system libraries.
+eigen_flags="-DEIGEN_MALLOC_ALREADY_ALIGNED=1"
 # clang 16: clang 14 rejects the core's lambdas that capture structured
 # bindings (a C++20 feature GCC and clang >= 16 accept in C++17 mode).
 cxx=${FUZZ_CXX:-clang++-16}
@@ -26,7 +31,8 @@ if [[ -f "$build_dir/CMakeCache.txt" ]] && ! grep -q "CMAKE_CXX_COMPILER:.*=$(co
   rm -rf "$build_dir"  # configured with another compiler: CMake cannot switch in place
 fi
 CC=$cc CXX=$cxx cmake -S "$root" -B "$build_dir" -DBRICK_POSE_CORE_ONLY=ON -DBRICK_POSE_SANITIZE=ON \
-  -DBRICK_POSE_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null || { echo "fuzz: configure failed" >&2; exit 1; }
+  -DBRICK_POSE_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS="$eigen_flags" >/dev/null || { echo "fuzz: configure failed" >&2; exit 1; }
 cmake --build "$build_dir" --target fuzz_targets -j"$jobs" || { echo "fuzz: build failed" >&2; exit 1; }
 
 if [[ $# -gt 0 ]]; then targets=("$@"); else

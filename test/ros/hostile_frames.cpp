@@ -97,6 +97,10 @@ protected:
     if (manager_lost_)
       ASSERT_TRUE(ros::service::exists(kService, false)) << "the nodelet manager died in an earlier case";
     ASSERT_TRUE(ros::service::waitForService(kService, ros::Duration(60.0)));
+    // The ingestion nodelet throttles its "dropping frame" error to one per
+    // 2 s: a pause lets each case's first rejection reach the log, which is
+    // how the behaviour on each kind of bad input is documented. Not timing.
+    ros::WallDuration(2.1).sleep();
     ros::NodeHandle camera("/camera");
     // Queues deep enough that a burst reaches the pipeline's own (small)
     // queues instead of being thinned here.
