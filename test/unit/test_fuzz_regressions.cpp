@@ -8,6 +8,7 @@
 // manager, and with it the camera driver sharing it.
 
 #include <functional>
+#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -15,6 +16,7 @@
 
 #include "brick_pose/catalogue/brick_catalogue.h"
 #include "brick_pose/common/errors.h"
+#include "brick_pose/correction/pose_correction.h"
 #include "brick_pose/frame/frame_builder.h"
 #include "brick_pose/roi/front_end.h"
 
@@ -85,6 +87,15 @@ TEST(FuzzRegressions, BrickEntryThatIsNotAMapIsAConfigError)
   expectConfigErrorOnly([] { BrickCatalogue::fromYamlString("bricks:\n  - [red, 0.3]\n"); });
 }
 
+// fuzz_catalogue_yaml, fuzz/regressions/fuzz_catalogue_yaml/unterminated_flow_map.yaml
+// (minimised from a 400-byte input): OpenCV's YAML reader throws
+// std::length_error ("basic_string::_M_create"), not cv::Exception, from the
+// cv::FileStorage constructor in openYamlText (brick_catalogue.cpp).
+TEST(FuzzRegressions, UnterminatedFlowMapIsAConfigError)
+{
+  expectConfigErrorOnly([] { BrickCatalogue::fromYamlString("{ :"); });
+}
+
 // fuzz_front_end, fuzz/regressions/fuzz_front_end/one_pixel_frame (also seen
 // killing the manager in the hostile_frames rostest): the HSV segmenter's
 // coarse pass resizes by 1/coarse_factor, which gives an empty image when the
@@ -110,6 +121,37 @@ TEST(FuzzRegressions, RegionGrowingFrontEndOnFramesOnePixelWideOrHigh)
     SCOPED_TRACE(std::to_string(size.width) + "x" + std::to_string(size.height));
     const RgbdFrame frame = flatFrame(size.width, size.height);
     expectNothingButInputError([&] { front_end.process(frame); });
+  }
+}
+// fuzz_pose_correction (crash-470bef76...): a finite but absurd registration
+// pose (translation 1.8e308 m) passes the finiteness and rigidity checks, and
+// the correction overflows to an Inf translation that it returns as a
+// success. Replayed with the decoded values (paper mode, blue brick).
+TEST(FuzzRegressions, CorrectionOfAnAbsurdlyFarPoseIsRefusedOrFinite)
+{
+  const double far_m = std::numeric_limits<double>::max();
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() << 0.33334249078224332, -0.66667135383088671, 0.66665740063422563,  //
+      0.66667135383088671, -0.33331480126846902, -0.6666712452451008,                 //
+      0.66665740063422563, 0.6666712452451008, 0.33334270794928766;
+  pose.translation() = Eigen::Vector3d(far_m, far_m, 0.0);
+  MeasuredFace face;
+  face.t1_m = Eigen::Vector3d(1.1882352941176464, 1.1882352938272938, -1.7228860294117647);
+  face.t2_m = Eigen::Vector3d(0.91376977060355324, 0.33506978041403035, -1.7228860294117647);
+  face.centroid_m = Eigen::Vector3d(0.0, 2.9999999991784794, -1.5358524711473946);
+  face.normal = Eigen::Vector3d(-0.20750505036965661, 0.0, 0.99999993498787965);
+  PoseCorrectionParameters parameters;
+  parameters.mode = CorrectionMode::kPaper;
+  const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
+  const BrickType& blue = catalogue.at("blue");
+  try
+  {
+    const PoseCorrection correction = correctPose(pose, blue, face, parameters);
+    EXPECT_TRUE(correction.corrected_pose.matrix().allFinite()) << "accepted, with a non-finite corrected pose:\n"
+                                                               << correction.corrected_pose.matrix();
+  }
+  catch (const InputError&)
+  {
   }
 }
 }  // namespace
