@@ -90,6 +90,14 @@ BrickRegistration BrickPoseEstimator::registerCandidate(const BrickCandidate& ca
   const double visible_fraction =
       visibleFaceArea(*candidate.points, candidate.normal) / (type.length_m * type.width_m);
   params.overlap = std::clamp(visible_fraction, kMinOverlap, params_.super4pcs.overlap);
+  // The correction takes tilt, yaw and position from the measured face and
+  // needs the registration only to within the face's symmetry, so Super4PCS's
+  // ICP polish (most of its time) would be thrown away.
+  if (params_.refinement == RefinementMethod::kCorrection)
+  {
+    params.refine_iterations = 0;
+    params.fine_refine_iterations = 0;
+  }
   BrickRegistration registration;
   registration.result = registration::Super4PCS(params).align(source, target);
   registration.elapsed_ms = millisecondsSince(start);
