@@ -58,7 +58,10 @@ for target in "${targets[@]}"; do
   fi
 
   echo "== $target: ${seconds} s"
-  rm -f "$artifacts"/crash-* "$artifacts"/leak-* "$artifacts"/timeout-* "$artifacts"/oom-*
+  # Inputs of the previous run move aside, so that the verdict is this run's.
+  mkdir -p "$artifacts/previous"
+  find "$artifacts" -maxdepth 1 -type f \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) \
+    -exec mv -f {} "$artifacts/previous/" \;
   # -fork=1 -ignore_crashes=1: keep fuzzing after a crash, so that one known
   # bug does not hide the others; the verdict comes from the saved artifacts.
   # -timeout: one input taking 10 s is a hang (Super4PCS has a 20 ms budget).
@@ -69,9 +72,11 @@ for target in "${targets[@]}"; do
   runs=$(grep -oE '#[0-9]+' "$artifacts/fuzz.log" | tail -1 | tr -d '#')
   found=$(find "$artifacts" -maxdepth 1 -type f \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)
   if [[ $found -gt 0 || ( $rc -ne 0 && $rc -ne 1 ) ]]; then
-    echo "fuzz: $target: $found crashing input(s) in $artifacts (exit $rc); distinct reports:"
-    grep -hoE "what\(\): .*|runtime error: .*|ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer): [a-z-]+" "$artifacts/fuzz.log" \
-      | sort | uniq -c | sort -rn | head -5
+    echo "fuzz: $target: $found crashing input(s) in $artifacts (exit $rc); distinct reports (first 10 replayed):"
+    # Fork mode keeps the children's reports out of fuzz.log: replay a few.
+    find "$artifacts" -maxdepth 1 -type f -name 'crash-*' | head -10 | while read -r input; do
+      "$binary" -runs=0 "$input" 2>&1 | grep -m1 -oE "what\(\): .*|runtime error: .*|ERROR: AddressSanitizer: [a-z-]+|SEGV" || true
+    done | sort | uniq -c | sort -rn
     summary+=("$target: $found CRASHING INPUT(S) after ~${runs:-?} runs (see $artifacts/fuzz.log)"); status=1
   else
     summary+=("$target: clean, ~${runs:-?} runs in ${seconds} s")
