@@ -123,6 +123,26 @@ TEST(FuzzRegressions, RegionGrowingFrontEndOnFramesOnePixelWideOrHigh)
     expectNothingButInputError([&] { front_end.process(frame); });
   }
 }
+// fuzz_front_end, region-growing mode, every crash of a 30 s run: frames up
+// to 96x44 px thin (stride 6) to block clouds smaller than the integral-image
+// normal window (8 strided px). PCL's IntegralImageNormalEstimation then reads
+// outside the cloud (SEGV in computeFeatureFull, called from
+// region_growing_segmenter.cpp:142), or leaves the normals empty, and
+// `(*normals)[i]` (region_growing_segmenter.cpp:146) binds a reference to
+// nothing (UBSan). A crash here ends this test binary.
+TEST(FuzzRegressions, RegionGrowingOnFramesSmallerThanTheNormalWindow)
+{
+  FrontEndParams params;
+  params.mode = SegmentationMode::kRegionGrowing;
+  const FrontEnd front_end(BrickCatalogue::mbzirc2020(), params);
+  for (const cv::Size size : {cv::Size(18, 42), cv::Size(64, 40), cv::Size(96, 44), cv::Size(6, 6)})
+  {
+    SCOPED_TRACE(std::to_string(size.width) + "x" + std::to_string(size.height));
+    const RgbdFrame frame = flatFrame(size.width, size.height);
+    expectNothingButInputError([&] { front_end.process(frame); });
+  }
+}
+
 // fuzz_pose_correction (crash-470bef76...): a finite but absurd registration
 // pose (translation 1.8e308 m) passes the finiteness and rigidity checks, and
 // the correction overflows to an Inf translation that it returns as a
