@@ -174,5 +174,38 @@ TEST(FuzzRegressions, CorrectionOfAnAbsurdlyFarPoseIsRefusedOrFinite)
   {
   }
 }
+// fuzz/regressions/fuzz_pose_correction/rotation_of_huge_entries_passes_rigidity:
+// a "rotation" whose entries are 1.8e308 makes R^T R - I overflow to NaN, and
+// requireRigid (pose_correction.cpp:46) compares `orthogonality_error >
+// kRigidTolerance || determinant < 0`, both false for NaN, so the matrix
+// passes as rigid and the correction returns NaN everywhere (here with the
+// decoded brick of 1.8e308 m; with a catalogue brick the input is refused).
+TEST(FuzzRegressions, RotationWithHugeEntriesIsNotRigid)
+{
+  const double huge = std::numeric_limits<double>::max();
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() << huge, huge, huge, huge, 0.0, -1.7333333333333334, -1.7333333333333334, huge, huge;
+  pose.translation() = Eigen::Vector3d(huge, 0.0, -2.6);
+  MeasuredFace face;
+  face.t1_m = Eigen::Vector3d(-2.6, -2.6, 3.0);
+  face.t2_m = Eigen::Vector3d(-0.6, -0.6, 1.0);
+  face.centroid_m = face.midpoint_m();
+  face.normal = Eigen::Vector3d(1.0, 1.0, 1.0);
+  PoseCorrectionParameters parameters;
+  parameters.mode = CorrectionMode::kPaper;
+  BrickType brick = BrickCatalogue::mbzirc2020().at("orange");
+  brick.length_m = brick.width_m = huge;  // as decoded; correctPose checks only that the length is positive
+  try
+  {
+    const PoseCorrection correction = correctPose(pose, brick, face, parameters);
+    ADD_FAILURE() << "accepted as rigid, corrected pose:\n" << correction.corrected_pose.matrix();
+  }
+  catch (const InputError&)
+  {
+  }
+  catch (const ConfigError&)
+  {
+  }
+}
 }  // namespace
 }  // namespace brick_pose
