@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include <opencv2/core.hpp>
 
@@ -26,6 +27,12 @@ cv::FileStorage openYamlText(const std::string& text)
   }
   catch (const cv::Exception& e)
   {
+    throw ConfigError(std::string("brick catalogue: not valid YAML: ") + e.what());
+  }
+  catch (const std::exception& e)
+  {
+    // OpenCV's YAML reader also fails with standard exceptions (e.g.
+    // std::length_error on an unterminated flow map).
     throw ConfigError(std::string("brick catalogue: not valid YAML: ") + e.what());
   }
 }
@@ -154,6 +161,10 @@ BrickCatalogue BrickCatalogue::fromYamlString(const std::string& text)
       types.push_back(parseBrick(node));
   }
   catch (const cv::Exception& e)
+  {
+    throw ConfigError(std::string("brick catalogue: malformed YAML: ") + e.what());
+  }
+  catch (const std::length_error& e)
   {
     throw ConfigError(std::string("brick catalogue: malformed YAML: ") + e.what());
   }

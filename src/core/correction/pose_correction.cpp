@@ -43,7 +43,8 @@ void requireRigid(const Eigen::Isometry3d& pose)
     reject("registration pose is not finite (NaN or Inf)");
   const Eigen::Matrix3d rotation = pose.linear();
   const double orthogonality_error = (rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).norm();
-  if (orthogonality_error > kRigidTolerance || rotation.determinant() < 0.0)
+  // Written so that NaN (from entries near 1e308) fails the test too.
+  if (!(orthogonality_error <= kRigidTolerance) || !(rotation.determinant() > 0.0))
     reject("registration pose is not a rigid transform (rotation part not orthonormal with determinant +1)");
 }
 
@@ -200,13 +201,21 @@ PoseCorrection correctPose(const Eigen::Isometry3d& T_cam_brick, const BrickType
     throw ConfigError("pose correction: brick '" + brick.name + "' needs a positive length_m");
   requireRigid(T_cam_brick);
   const Eigen::Vector3d normal = validateFace(face, brick, parameters);
+  PoseCorrection correction;
   switch (parameters.mode)
   {
     case CorrectionMode::kPaper:
-      return correctLikePaper(T_cam_brick, brick, face, parameters);
+      correction = correctLikePaper(T_cam_brick, brick, face, parameters);
+      break;
     case CorrectionMode::kFull:
-      return correctAllSixDof(T_cam_brick, face, normal, parameters);
+      correction = correctAllSixDof(T_cam_brick, face, normal, parameters);
+      break;
+    default:
+      throw ConfigError("pose correction: unknown correction mode");
   }
-  throw ConfigError("pose correction: unknown correction mode");
+  // Finite but absurd inputs (entries near 1e308) overflow in the products.
+  if (!correction.corrected_pose.matrix().allFinite())
+    throw InputError("pose correction: the corrected pose overflowed (pose or face far out of range)");
+  return correction;
 }
 }  // namespace brick_pose

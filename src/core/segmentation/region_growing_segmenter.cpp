@@ -132,6 +132,10 @@ std::vector<Segment> RegionGrowingSegmenter::segment(const RgbdFrame& frame) con
   // Block medians rather than every stride-th pixel: sunlight leaves so many
   // dropouts that the integral-image normals of a strided cloud vanish.
   const pcl::PointCloud<pcl::PointXYZ>::Ptr strided = makeBlockMedianCloud(frame, params_.stride_px, source_pixels);
+  // PCL's integral-image normals read outside a cloud smaller than their
+  // window (and then leave no normals); such a frame holds no plate anyway.
+  const auto min_side = static_cast<std::uint32_t>(2.0 * std::ceil(params_.normal_smoothing_size) + 2.0);
+  if (strided->width < min_side || strided->height < min_side) return {};
 
   pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
   pcl::IntegralImageNormalEstimation<pcl::PointXYZ, pcl::Normal> normal_estimation;
@@ -140,6 +144,7 @@ std::vector<Segment> RegionGrowingSegmenter::segment(const RgbdFrame& frame) con
   normal_estimation.setNormalSmoothingSize(static_cast<float>(params_.normal_smoothing_size));
   normal_estimation.setInputCloud(strided);
   normal_estimation.compute(*normals);
+  if (normals->size() != strided->size()) return {};  // PCL gave up on this cloud
 
   // Region growing needs finite points and normals.
   pcl::IndicesPtr valid(new pcl::Indices);
