@@ -7,7 +7,6 @@
 
 #include <boost/shared_ptr.hpp>
 #include <ros/time.h>
-#include <ros/wall_timer.h>
 #include <std_msgs/Header.h>
 
 #include "brick_pose/frame/rgbd_frame.h"
