@@ -22,4 +22,4 @@ done
 if ! rostopic list >/dev/null 2>&1; then
   echo "brick_pose demo: roslaunch did not come up" >&2; tail -20 "$log"; exit 1
 fi
-"$root/ws/devel/lib/brick_pose/brick_pose_demo" "$@"
+"$root/ws/devel/lib/brick_pose/brick_pose_demo"  # the arguments were for roslaunch
