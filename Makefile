@@ -3,11 +3,12 @@
 #   make demo   install what is missing, build, run the demo on the synthetic D415
 #   make test   install what is missing, build, run every unit test (also under ASan/UBSan) and rostest
 #   make bench  build and run the accuracy/speed benchmarks against ground truth
+#   make fuzz, make soak   the reliability runs (not in CI)
 
 SHELL := /bin/bash
 export PATH := /usr/bin:/bin:$(PATH)
 
-.PHONY: all deps build test demo bench clean
+.PHONY: all deps build test demo bench fuzz soak clean
 
 all: build
 
@@ -29,6 +30,14 @@ demo: build
 
 bench: build
 	@scripts/bench.sh
+
+# Not part of make test: libFuzzer targets for FUZZ_SECONDS (30) each, and the
+# 30 Hz soak of the demo pipeline for SOAK_MINUTES (10).
+fuzz: deps
+	@scripts/fuzz.sh
+
+soak: build
+	@bench/soak.sh
 
 clean:
 	rm -rf ws
