@@ -428,17 +428,6 @@ private:
   std::map<sim::SceneKind, sim::SceneGenerator> generators_;
 };
 
-ImageView viewOf(const cv::Mat& image, const std::string& encoding)
-{
-  ImageView view;
-  view.data = image.data;
-  view.width_px = image.cols;
-  view.height_px = image.rows;
-  view.step_bytes = image.step[0];
-  view.encoding = encoding;
-  return view;
-}
-
 /// The registration, or nullopt when Super4PCS finds no pose.
 std::optional<BrickRegistration> tryRegister(const BrickPoseEstimator& estimator, const BrickCandidate& candidate)
 {
@@ -460,7 +449,7 @@ std::vector<std::optional<BrickRegistration>> PoseBench::runTimedPipeline(const 
   header.frame_id = "camera_color_optical_frame";
   const auto start = std::chrono::steady_clock::now();
   const RgbdFrame frame =
-      makeRgbdFrame(viewOf(synthetic.rgb, "rgb8"), viewOf(synthetic.depth_mm, "16UC1"), camera_, header);
+      makeRgbdFrame(imageViewOf(synthetic.rgb, "rgb8"), imageViewOf(synthetic.depth_mm, "16UC1"), camera_, header);
   front_end_result = front_end_.process(frame);
   const double front_end_ms = millisecondsSince(start);
   std::vector<std::optional<BrickRegistration>> registrations;

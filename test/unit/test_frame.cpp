@@ -33,17 +33,6 @@ cv::Mat depthMillimetres(int width = 8, int height = 6, std::uint16_t value = 15
   return cv::Mat(height, width, CV_16UC1, cv::Scalar(value));
 }
 
-ImageView viewOf(const cv::Mat& image, const std::string& encoding)
-{
-  ImageView view;
-  view.data = image.data;
-  view.width_px = image.cols;
-  view.height_px = image.rows;
-  view.step_bytes = image.step;
-  view.encoding = encoding;
-  return view;
-}
-
 /// Runs `build` and returns the InputError message ("" if none was thrown).
 template <typename Build>
 std::string inputErrorOf(Build build)
@@ -88,7 +77,7 @@ TEST(FrameBuilder, KeepsMetresAndMarksNonFiniteAsHole)
 TEST(FrameBuilder, ConvertsBgrToRgb)
 {
   const cv::Mat bgr(6, 8, CV_8UC3, cv::Scalar(1, 2, 3));  // B=1 G=2 R=3
-  const RgbdFrame frame = makeRgbdFrame(viewOf(bgr, "bgr8"), viewOf(depthMillimetres(), "16UC1"), smallCamera(), {});
+  const RgbdFrame frame = makeRgbdFrame(imageViewOf(bgr, "bgr8"), imageViewOf(depthMillimetres(), "16UC1"), smallCamera(), {});
   EXPECT_EQ(frame.rgb.at<cv::Vec3b>(0, 0), cv::Vec3b(3, 2, 1));
   const RgbdFrame from_mat = makeRgbdFrame(bgr, depthMillimetres(), smallCamera(), {}, true);
   EXPECT_EQ(from_mat.rgb.at<cv::Vec3b>(5, 7), cv::Vec3b(3, 2, 1));
@@ -99,7 +88,7 @@ TEST(FrameBuilder, RejectsWrongDepthEncoding)
   const cv::Mat colour = colourImage();
   const cv::Mat depth8(6, 8, CV_8UC1, cv::Scalar(1));
   const std::string message = inputErrorOf(
-      [&] { makeRgbdFrame(viewOf(colour, "rgb8"), viewOf(depth8, "8UC1"), smallCamera(), {}); });
+      [&] { makeRgbdFrame(imageViewOf(colour, "rgb8"), imageViewOf(depth8, "8UC1"), smallCamera(), {}); });
   EXPECT_NE(message.find("depth encoding"), std::string::npos) << message;
   EXPECT_NE(message.find("8UC1"), std::string::npos) << message;
   const std::string from_mat = inputErrorOf([&] { makeRgbdFrame(colour, depth8, smallCamera(), {}); });
@@ -111,7 +100,7 @@ TEST(FrameBuilder, RejectsWrongColourEncoding)
   const cv::Mat mono(6, 8, CV_8UC1, cv::Scalar(1));
   const cv::Mat depth = depthMillimetres();
   const std::string message =
-      inputErrorOf([&] { makeRgbdFrame(viewOf(mono, "mono8"), viewOf(depth, "16UC1"), smallCamera(), {}); });
+      inputErrorOf([&] { makeRgbdFrame(imageViewOf(mono, "mono8"), imageViewOf(depth, "16UC1"), smallCamera(), {}); });
   EXPECT_NE(message.find("colour encoding"), std::string::npos) << message;
   const std::string from_mat = inputErrorOf([&] { makeRgbdFrame(mono, depth, smallCamera(), {}); });
   EXPECT_NE(from_mat.find("colour encoding"), std::string::npos) << from_mat;
@@ -166,7 +155,7 @@ TEST(FrameBuilder, RejectsEmptyImages)
   ImageView empty_depth;
   empty_depth.encoding = "16UC1";
   const cv::Mat colour = colourImage();
-  message = inputErrorOf([&] { makeRgbdFrame(viewOf(colour, "rgb8"), empty_depth, smallCamera(), {}); });
+  message = inputErrorOf([&] { makeRgbdFrame(imageViewOf(colour, "rgb8"), empty_depth, smallCamera(), {}); });
   EXPECT_NE(message.find("depth image is empty"), std::string::npos) << message;
 }
 

@@ -32,6 +32,9 @@ struct FrameHeader
   std::string frame_id;
 };
 
+/// A view on `image`'s pixels (borrowed: `image` must outlive the view).
+ImageView imageViewOf(const cv::Mat& image, const std::string& encoding);
+
 /// Copies and validates the buffers into an RgbdFrame. Depth 0 (RealSense's
 /// "no data"), negative and non-finite values become NaN. Throws InputError
 /// naming the problem: unsupported encoding, empty image, colour/depth size

@@ -129,16 +129,6 @@ std::string encodingOfDepthMat(const cv::Mat& depth)
        " (expected CV_16UC1 millimetres or CV_32FC1 metres)");
 }
 
-ImageView viewOf(const cv::Mat& image, const std::string& encoding)
-{
-  ImageView view;
-  view.data = image.data;
-  view.width_px = image.cols;
-  view.height_px = image.rows;
-  view.step_bytes = image.step;
-  view.encoding = encoding;
-  return view;
-}
 }  // namespace
 
 RgbdFrame makeRgbdFrame(const ImageView& color, const ImageView& depth, const PinholeCamera& camera,
@@ -179,6 +169,16 @@ RgbdFrame makeRgbdFrame(const cv::Mat& color, const cv::Mat& depth, const Pinhol
   if (depth.empty()) fail("depth image is empty");
   const std::string color_encoding = encodingOfColorMat(color, color_is_bgr);
   const std::string depth_encoding = encodingOfDepthMat(depth);
-  return makeRgbdFrame(viewOf(color, color_encoding), viewOf(depth, depth_encoding), camera, header);
+  return makeRgbdFrame(imageViewOf(color, color_encoding), imageViewOf(depth, depth_encoding), camera, header);
+}
+ImageView imageViewOf(const cv::Mat& image, const std::string& encoding)
+{
+  ImageView view;
+  view.data = image.data;
+  view.width_px = image.cols;
+  view.height_px = image.rows;
+  view.step_bytes = image.step;
+  view.encoding = encoding;
+  return view;
 }
 }  // namespace brick_pose
