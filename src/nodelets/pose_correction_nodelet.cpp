@@ -6,8 +6,9 @@
 //  - `detections` (brick_pose/BrickDetectionArray) with timings and latency;
 //  - `markers` (visualization_msgs/MarkerArray, only when subscribed);
 //  - the `get_brick_pose` service (brick_pose/GetBrickPose), answered from
-//    the latest detections on its own thread so a busy pipeline does not
-//    delay it.
+//    the latest detections on a thread of its own: the manager's workers may
+//    all be busy (long frames in every stage, or a camera driver sharing the
+//    manager) and a grasp planner must still get its answer.
 
 #include <map>
 #include <mutex>
@@ -16,6 +17,7 @@
 #include <dynamic_reconfigure/server.h>
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <tf2_eigen/tf2_eigen.h>
 #include <tf2_ros/buffer.h>
@@ -77,6 +79,14 @@ std::string typeCounts(const BrickDetectionArray& detections)
 
 class PoseCorrectionNodelet : public nodelet::Nodelet
 {
+public:
+  ~PoseCorrectionNodelet() override
+  {
+    // Stop answering before the members the service reads go away.
+    if (service_spinner_) service_spinner_->stop();
+    service_.shutdown();
+  }
+
 private:
   void onInit() override
   {
@@ -98,11 +108,21 @@ private:
     detections_publisher_ = node.advertise<BrickDetectionArray>("detections", 5);
     markers_publisher_ = node.advertise<visualization_msgs::MarkerArray>("markers", 2);
     registrations_subscriber_ = node.subscribe("registrations", 2, &PoseCorrectionNodelet::onRegistrations, this);
-    // The service runs on the multi-threaded queue: it only reads the latest
-    // detections, so it answers while the pipeline is busy with a frame.
-    service_ = getMTNodeHandle().advertiseService("get_brick_pose", &PoseCorrectionNodelet::onGetBrickPose, this);
-    NODELET_INFO("service %s", service_.getService().c_str());
+    advertiseService(node);
     startReconfigure();
+  }
+
+  /// The service gets its own queue and thread, not the manager's worker
+  /// pool: it only reads the latest detections, so nothing the pipeline does
+  /// can make it wait. (tf2's listener also runs on a thread of its own.)
+  void advertiseService(const ros::NodeHandle& node)
+  {
+    ros::NodeHandle service_node(node);
+    service_node.setCallbackQueue(&service_queue_);
+    service_ = service_node.advertiseService("get_brick_pose", &PoseCorrectionNodelet::onGetBrickPose, this);
+    service_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &service_queue_);
+    service_spinner_->start();
+    NODELET_INFO("service %s (own thread)", service_.getService().c_str());
   }
 
   /// Refinement method and correction mode are switched live; the server
@@ -370,7 +390,9 @@ private:
   ros::Subscriber registrations_subscriber_;
   ros::Publisher detections_publisher_;
   ros::Publisher markers_publisher_;
+  ros::CallbackQueue service_queue_;
   ros::ServiceServer service_;
+  std::unique_ptr<ros::AsyncSpinner> service_spinner_;
   mutable std::mutex latest_mutex_;
   BrickDetectionArrayConstPtr latest_;
   int frames_since_log_ = 0;
