@@ -217,6 +217,28 @@ TEST(LeastAreaQuad, DiagonalIntersectionIsPerspectiveCentre)
   EXPECT_LT((diagonalIntersection(square) - Eigen::Vector2d(2, 1)).norm(), 1e-12);
 }
 
+TEST(RoiFilter, FaceCentreOfALongFaceMovesLittleWithOneBadCorner)
+{
+  // An orange plate, 1.8 x 0.2 m, on a tilted plane. One corner measured
+  // 3 mm too far across the face (a side line fitted at a slant).
+  const Eigen::Matrix3d rotation = test::PlateScene::facingCamera(0.4, 0.3);
+  const Eigen::Vector3d centre(0.1, -0.2, 1.4);
+  const Eigen::Vector3d along = rotation.col(0), across = rotation.col(1);
+  std::array<Eigen::Vector3d, 4> corners = {centre + 0.9 * along + 0.1 * across, centre + 0.9 * along - 0.1 * across,
+                                            centre - 0.9 * along - 0.1 * across, centre - 0.9 * along + 0.1 * across};
+  EXPECT_LT((faceCentre(corners) - centre).norm(), 1e-12);
+  corners[0] += 0.003 * across;
+  const Eigen::Vector3d offset = faceCentre(corners) - centre;
+  EXPECT_NEAR(offset.dot(across), 0.00075, 1e-9) << "a quarter of the corner's error, across";
+  EXPECT_LT(std::abs(offset.dot(along)), 1e-9) << "nothing along the face";
+
+  // The diagonals' intersection of the same corners (in the plane's 2D
+  // coordinates) slides along the face by 9/4 of the error.
+  QuadCorners in_plane;
+  for (int k = 0; k < 4; ++k) in_plane[k] = Eigen::Vector2d((corners[k] - centre).dot(along), (corners[k] - centre).dot(across));
+  EXPECT_GT(std::abs(diagonalIntersection(in_plane).x()), 0.006);
+}
+
 /// Candidate of the scene's plate through HSV segmentation and the ROI filter.
 RoiFilterParams centreSampledRoi()
 {

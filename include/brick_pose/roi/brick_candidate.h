@@ -43,7 +43,7 @@ struct BrickCandidate
   /// The corners' rays intersected with `plane`.
   std::array<Eigen::Vector3d, 4> corners_m;
 
-  /// Centre of the face: the quad's diagonal intersection on the plane.
+  /// Centre of the face: the mean of `corners_m` (on the plane), and its image.
   Eigen::Vector2d centroid_px = Eigen::Vector2d::Zero();
   Eigen::Vector3d centroid_m = Eigen::Vector3d::Zero();
   /// Points on the long axis at +/- length/4 from the centre (T1 toward the

@@ -121,6 +121,11 @@ int longEdgeStart(const QuadCorners& corners_px, const std::array<Eigen::Vector3
 }
 }  // namespace
 
+Eigen::Vector3d faceCentre(const std::array<Eigen::Vector3d, 4>& corners_m)
+{
+  return 0.25 * (corners_m[0] + corners_m[1] + corners_m[2] + corners_m[3]);
+}
+
 void RoiFilterParams::validate() const
 {
   auto require = [](bool condition, const char* field, const char* rule) {
@@ -272,11 +277,8 @@ std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const S
   candidate.length_m = 0.5 * ((c[1] - c[0]).norm() + (c[2] - c[3]).norm());
   candidate.width_m = longEdgeSeparation(c);
 
-  // The diagonals' intersection is the perspective image of the face centre.
-  candidate.centroid_px = diagonalIntersection(candidate.corners_px);
-  if (!candidate.plane.intersectRay(camera.ray(candidate.centroid_px.x(), candidate.centroid_px.y()),
-                                    candidate.centroid_m))
-    return std::string("the quad centre's ray misses the segment plane");
+  candidate.centroid_m = faceCentre(c);
+  candidate.centroid_px = camera.project(candidate.centroid_m);
   const Eigen::Vector3d long_axis = ((c[1] - c[0]) + (c[2] - c[3])).normalized();
   candidate.t1_m = candidate.centroid_m + 0.25 * candidate.length_m * long_axis;
   candidate.t2_m = candidate.centroid_m - 0.25 * candidate.length_m * long_axis;
