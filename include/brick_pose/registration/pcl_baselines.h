@@ -23,6 +23,13 @@ struct PclFpcsParams
   int max_time_s = 1;
   /// KFPCS only: weight of the translation term in its score.
   double kfpcs_lambda = 0.5;
+  /// Bases (RANSAC iterations) to try; 0 keeps PCL's heuristic, which with
+  /// the default small_error and overlap 0.95 is only about 12 bases:
+  /// log(small_error) / log(1 - overlap^4) / (0.3 * 2 * overlap).
+  int max_iterations = 0;
+  /// Stop as soon as a candidate's fitness (1 - fraction of source points
+  /// within 2 delta) falls below this; negative keeps PCL's 1 - overlap.
+  double score_threshold = -1.0;
 
   /// Throws ConfigError naming the first unusable field.
   void validate() const;

@@ -20,6 +20,11 @@ struct RegistrationResult
   int bases_tried = 0;
   int candidates_verified = 0;
   double elapsed_s = 0.0;
+  /// Thread CPU time of the congruent-set search and of the local refinement
+  /// (Super4PCS only; 0 elsewhere). The rest of the CPU time of a call is
+  /// setup: sampling, scales and the LCP grid. For profiling, not control.
+  double search_cpu_s = 0.0;
+  double refine_cpu_s = 0.0;
   bool success = false;
   /// Why the search stopped ("good enough LCP reached", "time budget
   /// exhausted", ...) or why it failed.

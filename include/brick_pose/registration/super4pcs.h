@@ -6,11 +6,13 @@
 // congruent 4-point set of the target through the smart pair index, fits a
 // rigid transform to each and keeps the one with the largest common pointset
 // (LCP). Stops when the LCP is good enough, when max_bases bases were tried or
-// when the time budget is spent. The best candidate is finally polished by
-// symmetric trimmed ICP in two stages, coarse then fine (symmetric_icp.h): the
-// LCP is flat near the optimum on flat faces, so the raw 4-point pose is
-// only accurate to about the pair tolerance. The time budget covers the
-// polish too.
+// when the time budget is spent. The best candidate is finally polished in
+// two stages: a coarse symmetric hybrid ICP on small samples
+// (symmetric_icp.h), then a boundary ICP (boundary_icp.h) that takes the
+// position and rotation within the surface from the boundaries of both
+// clouds. The LCP is flat near the optimum on flat faces, so the raw 4-point
+// pose is only accurate to about the pair tolerance, and along a long face to
+// far less. The time budget covers the polish too.
 
 #include <cstdint>
 
@@ -52,20 +54,22 @@ struct Super4PCSParams
   double min_success_ratio = 0.5;
   /// A 4-point fit with an RMS above max_fit_rms_factor * delta is rejected.
   double max_fit_rms_factor = 1.5;
-  /// Symmetric trimmed ICP iterations on the best candidate (0 disables
-  /// the refinement, both stages).
+  /// Iterations of the coarse refinement stage, symmetric hybrid ICP on the
+  /// best candidate (0 disables the refinement, both stages).
   int refine_iterations = 15;
-  /// Points kept (evenly spread) from the target for the ICP refinement...
-  int refine_sample_size = 500;
-  /// ...and from the source: denser, because a clean source (a model)
-  /// resolves the edges that fix the in-plane pose of a face.
-  int refine_source_sample_size = 1500;
-  /// A short second ICP stage on denser samples (0 iterations disables it):
-  /// the in-plane position of a long face is fixed by its short edges, which
-  /// sparse samples blur by about their spacing.
+  /// Points kept (evenly spread) from the target and from the source for the
+  /// coarse stage. The source sample also gives the boundary stage its
+  /// point-to-plane pairs. Small: the coarse stage only has to bring the
+  /// pose within reach of the boundary stage.
+  int refine_sample_size = 300;
+  int refine_source_sample_size = 300;
+  /// Iterations of the boundary stage (0 disables it), and the points kept
+  /// from the target and from the source to find their boundaries: dense,
+  /// because the in-surface position of a face is only as well known as its
+  /// boundary is sampled (a clean source, a model, keeps its exact edges).
   int fine_refine_iterations = 10;
   int fine_refine_sample_size = 2000;
-  int fine_refine_source_sample_size = 3000;
+  int fine_refine_source_sample_size = 4000;
   /// Same seed and inputs => same result (unless the time budget cuts in).
   std::uint64_t seed = 1;
 

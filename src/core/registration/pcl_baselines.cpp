@@ -50,6 +50,10 @@ RegistrationResult runFpcs(Aligner& aligner, const PointSet& source, const Point
   aligner.setNumberOfSamples(params.sample_size);
   aligner.setMaxComputationTime(params.max_time_s);
   aligner.setNumberOfThreads(1);
+  if (params.max_iterations > 0)
+    aligner.setMaximumIterations(params.max_iterations);
+  if (params.score_threshold >= 0.0)
+    aligner.setScoreThreshold(static_cast<float>(params.score_threshold));
   Cloud aligned;
   aligner.align(aligned);
 
@@ -74,6 +78,11 @@ void PclFpcsParams::validate() const
   if (max_time_s < 1)
     throw ConfigError("PclFpcsParams.max_time_s must be at least 1 (PCL counts whole seconds), got " +
                       std::to_string(max_time_s));
+  if (max_iterations < 0)
+    throw ConfigError("PclFpcsParams.max_iterations must be >= 0 (0: PCL's heuristic), got " +
+                      std::to_string(max_iterations));
+  if (std::isnan(score_threshold))
+    throw ConfigError("PclFpcsParams.score_threshold must be a number (negative: PCL's default)");
   if (!(kfpcs_lambda >= 0.0))
     throw ConfigError("PclFpcsParams.kfpcs_lambda must be >= 0, got " + std::to_string(kfpcs_lambda));
 }

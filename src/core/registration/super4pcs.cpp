@@ -1,12 +1,14 @@
 #include "brick_pose/registration/super4pcs.h"
 
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <random>
 #include <sstream>
 
+#include <time.h>
+
 #include "brick_pose/common/errors.h"
+#include "brick_pose/registration/boundary_icp.h"
 #include "brick_pose/registration/congruent_set_finder.h"
 #include "brick_pose/registration/coplanar_base.h"
 #include "brick_pose/registration/input_validation.h"
@@ -36,6 +38,12 @@ constexpr double kLcpRadiusPerSpacing = 1.3;
 constexpr double kReverseTolerancePerSpacing = 0.75;
 // Neighbourhood radius over the sample spacing for normal estimation.
 constexpr double kNormalRadiusPerSpacing = 2.5;
+// Neighbours of a point in boundary detection: enough that the centroid of
+// an interior neighbourhood stays close to its point.
+constexpr int kBoundaryNeighbours = 20;
+// Target points farther off the source surface than this many robust
+// standard deviations of the depth noise take no part in the target boundary.
+constexpr double kOnSurfaceSigmas = 3.0;
 // Candidates verified between two looks at the clock.
 constexpr int kClockStride = 32;
 
@@ -44,6 +52,14 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start)
 {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// CPU time of the calling thread, for the per-phase profile in the result.
+double threadCpuSeconds()
+{
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
 void requireInRange(double value, double min, double max, const char* name)
@@ -73,13 +89,6 @@ struct SearchScales
   double source_diameter_m = 0.0;
 };
 
-/// Sample sizes and iterations of one ICP refinement stage.
-struct RefineStage
-{
-  int source_sample_size;
-  int target_sample_size;
-  int iterations;
-};
 
 /// With normals, a candidate must also turn each base normal onto the normal
 /// of its target point: the pair filters only compare normals with each other,
@@ -220,54 +229,124 @@ SearchOutcome searchCongruentSets(const SearchInput& input, const LcpScorer& sco
   return outcome;
 }
 
-/// Coarse ICP stage on moderate samples from the 4-point pose (wide radius,
-/// fast slides), then a short fine stage on dense samples: ICP on a face is
-/// only as precise as its samples resolve the face's edges, and dense samples
-/// cost too much to start with. Both stages stop at the time budget.
+/// An evenly spread sample of `cloud` with unit normals (estimated when the
+/// caller gave none; callers' normals need not be unit).
+PointSet sampleWithNormals(const PointSet& cloud, int count, std::mt19937_64& rng)
+{
+  PointSet sample = cloud.subset(uniformSubsample(cloud.points, count, rng));
+  if (!sample.hasNormals())
+    sample.normals =
+        estimateNormals(sample.points, kNormalRadiusPerSpacing * neighbourSpacing(sample.points, 0.5, rng));
+  for (Eigen::Vector3d& normal : sample.normals)
+    if (normal.squaredNorm() > 0.0)
+      normal.normalize();
+  return sample;
+}
+
+/// Where the coarse stage leaves the pose, for the boundary stage to start.
+struct CoarseStageResult
+{
+  Eigen::Isometry3d pose;
+  double final_radius_m;
+};
+
+/// Stage 1: symmetric hybrid ICP on small samples from the 4-point pose,
+/// with a wide radius that shrinks: it pulls the pose onto the surface and
+/// most of the way in the plane, cheaply.
+CoarseStageResult coarseIcp(const PointSet& refine_source, const std::vector<Eigen::Vector3d>& refine_target,
+                            const Eigen::Isometry3d& start_pose, double start_radius_m, const SearchScales& scales,
+                            const Super4PCSParams& params, double remaining_s, std::mt19937_64& rng)
+{
+  const double target_spacing_m = neighbourSpacing(refine_target, 0.5, rng);
+  SymmetricIcpOptions icp;
+  icp.final_radius_m = std::max(1.5 * scales.lcp_radius_m, 1.5 * target_spacing_m);  // the LCP's resolution
+  icp.radius_m = std::max(start_radius_m, icp.final_radius_m);
+  icp.in_surface_tolerance_m = std::max(params.delta_m, target_spacing_m);
+  icp.final_in_surface_tolerance_m = icp.in_surface_tolerance_m;
+  icp.reverse_in_surface_tolerance_m =
+      std::max(params.delta_m, kReverseTolerancePerSpacing * neighbourSpacing(refine_source.points, 0.5, rng));
+  icp.max_iterations = params.refine_iterations;
+  icp.max_time_s = remaining_s;
+  // Steps below a fiftieth of the accuracy change nothing that matters.
+  icp.min_step_m = 0.02 * params.delta_m;
+  icp.min_step_rad = icp.min_step_m / std::max(scales.source_diameter_m, 1e-9);
+  return {refineSymmetricIcp(refine_source.points, refine_source.normals, refine_target, start_pose, icp),
+          icp.final_radius_m};
+}
+
+/// Stage 2: boundary ICP (boundary_icp.h). Point-to-plane pairs on the
+/// coarse stage's samples hold the surface; the boundaries of a dense source
+/// sample and of the target give the in-surface position and rotation, which
+/// the hybrid step of stage 1 leaves within a dead zone of about the target's
+/// sample spacing (it cannot tell an edge that overhangs by less from
+/// sampling noise), and along a long face the LCP hardly sees either.
+Eigen::Isometry3d boundaryIcp(const PointSet& source, const PointSet& target, const PointSet& plane_source,
+                              const Eigen::Isometry3d& start_pose, double plane_start_radius_m,
+                              double boundary_start_radius_m, const SearchScales& scales,
+                              const Super4PCSParams& params, double remaining_s, std::mt19937_64& rng)
+{
+  // The source boundary on a dense sample: a clean source (a model) then
+  // keeps its exact edge points.
+  const PointSet boundary_source = source.subset(uniformSubsample(source.points, params.fine_refine_source_sample_size, rng));
+  const double source_spacing_m = neighbourSpacing(boundary_source.points, 0.5, rng);
+  const std::vector<Eigen::Vector3d> boundary_target =
+      target.subset(uniformSubsample(target.points, params.fine_refine_sample_size, rng)).points;
+  const double target_spacing_m = neighbourSpacing(boundary_target, 0.5, rng);
+  if (!(source_spacing_m > 0.0) || !(target_spacing_m > 0.0))
+    return start_pose;
+  const SurfaceBoundary source_boundary = findSurfaceBoundary(
+      boundary_source.points, boundary_source.normals,
+      neighbourhoodRadius(boundary_source.points, kBoundaryNeighbours, rng));
+  // The target's boundary among its points on the source surface (no flying
+  // pixels), in the plane of the source's normals.
+  const OrientedPoints target_on_surface =
+      pointsOnSurface(plane_source.points, plane_source.normals, boundary_target, start_pose,
+                      std::max(boundary_start_radius_m, 3.0 * target_spacing_m), kOnSurfaceSigmas, 0.5 * params.delta_m);
+  const SurfaceBoundary target_boundary =
+      findSurfaceBoundary(target_on_surface.points, target_on_surface.normals,
+                          neighbourhoodRadius(target_on_surface.points, kBoundaryNeighbours, rng));
+
+  BoundaryIcpOptions icp;
+  icp.final_plane_radius_m = std::max(1.5 * scales.lcp_radius_m, 1.5 * target_spacing_m);
+  icp.plane_radius_m = std::max(plane_start_radius_m, icp.final_plane_radius_m);
+  // A target boundary point lies up to about a target spacing inside the true
+  // edge, and its nearest source boundary point up to half a source spacing
+  // along the edge.
+  icp.final_boundary_radius_m = std::max(params.delta_m, 1.5 * target_spacing_m + 0.5 * source_spacing_m);
+  icp.boundary_radius_m = std::max(boundary_start_radius_m, icp.final_boundary_radius_m);
+  icp.max_iterations = params.fine_refine_iterations;
+  icp.max_time_s = remaining_s;
+  icp.min_step_m = 0.02 * params.delta_m;
+  icp.min_step_rad = icp.min_step_m / std::max(scales.source_diameter_m, 1e-9);
+  return refineBoundaryIcp(plane_source.points, plane_source.normals, source_boundary, boundary_target,
+                           target_boundary, start_pose, icp);
+}
+
+/// The local refinement of the best 4-point pose: the coarse stage, then the
+/// boundary stage. Both stop at the time budget.
 Eigen::Isometry3d polishWithIcp(const PointSet& source, const PointSet& target, const Eigen::Isometry3d& start_pose,
                                 const SearchScales& scales, const Super4PCSParams& params, Clock::time_point start,
                                 std::mt19937_64& rng)
 {
-  Eigen::Isometry3d refined = start_pose;
+  const PointSet refine_source = sampleWithNormals(source, params.refine_source_sample_size, rng);
+  const std::vector<Eigen::Vector3d> refine_target =
+      target.subset(uniformSubsample(target.points, params.refine_sample_size, rng)).points;
   // Wide enough to reach from a 4-point pose that is off by the pair
   // tolerance at the base's ends or by several degrees in the plane of a face
   // (which the LCP hardly sees).
-  double start_radius_m = std::max(3.0 * scales.pair_tolerance_m, 0.08 * scales.source_diameter_m);
-  const std::array<RefineStage, 2> stages{{
-      {params.refine_source_sample_size, params.refine_sample_size, params.refine_iterations},
-      {params.fine_refine_source_sample_size, params.fine_refine_sample_size, params.fine_refine_iterations},
-  }};
-  for (const RefineStage& stage : stages)
-  {
-    const double remaining_s = params.max_time_s - secondsSince(start);
-    if (stage.iterations <= 0 || remaining_s <= 0.0)
-      continue;
-    PointSet refine_source = source.subset(uniformSubsample(source.points, stage.source_sample_size, rng));
-    const std::vector<Eigen::Vector3d> refine_target =
-        target.subset(uniformSubsample(target.points, stage.target_sample_size, rng)).points;
-    if (!refine_source.hasNormals())
-      refine_source.normals = estimateNormals(
-          refine_source.points, kNormalRadiusPerSpacing * neighbourSpacing(refine_source.points, 0.5, rng));
-    for (Eigen::Vector3d& normal : refine_source.normals)  // callers' normals need not be unit
-      if (normal.squaredNorm() > 0.0)
-        normal.normalize();
-    const double target_spacing_m = neighbourSpacing(refine_target, 0.5, rng);
-    SymmetricIcpOptions icp;
-    icp.final_radius_m = std::max(1.5 * scales.lcp_radius_m, 1.5 * target_spacing_m);  // the LCP's resolution
-    icp.radius_m = std::max(start_radius_m, icp.final_radius_m);
-    icp.in_surface_tolerance_m = std::max(params.delta_m, target_spacing_m);
-    icp.final_in_surface_tolerance_m = icp.in_surface_tolerance_m;
-    icp.reverse_in_surface_tolerance_m =
-        std::max(params.delta_m, kReverseTolerancePerSpacing * neighbourSpacing(refine_source.points, 0.5, rng));
-    icp.max_iterations = stage.iterations;
-    icp.max_time_s = remaining_s;
-    // Steps below a fiftieth of the accuracy change nothing that matters.
-    icp.min_step_m = 0.02 * params.delta_m;
-    icp.min_step_rad = icp.min_step_m / std::max(scales.source_diameter_m, 1e-9);
-    refined = refineSymmetricIcp(refine_source.points, refine_source.normals, refine_target, refined, icp);
-    start_radius_m = 2.0 * icp.final_radius_m;  // the next stage starts close
-  }
-  return refined;
+  const double start_radius_m = std::max(3.0 * scales.pair_tolerance_m, 0.08 * scales.source_diameter_m);
+  CoarseStageResult coarse{start_pose, start_radius_m / 2.0};
+  double remaining_s = params.max_time_s - secondsSince(start);
+  if (params.refine_iterations > 0 && remaining_s > 0.0)
+    coarse = coarseIcp(refine_source, refine_target, start_pose, start_radius_m, scales, params, remaining_s, rng);
+  remaining_s = params.max_time_s - secondsSince(start);
+  if (params.fine_refine_iterations <= 0 || remaining_s <= 0.0)
+    return coarse.pose;
+  // The coarse stage leaves the pose close to the surface (the plane pairs
+  // start at twice its final radius) but possibly far from the edges in the
+  // surface, as far as the 4-point pose was: the boundary pairs start wide.
+  return boundaryIcp(source, target, refine_source, coarse.pose, 2.0 * coarse.final_radius_m, start_radius_m,
+                     scales, params, remaining_s, rng);
 }
 }  // namespace
 
@@ -336,7 +415,9 @@ RegistrationResult Super4PCS::align(const PointSet& source, const PointSet& targ
   const LcpScorer scorer(lcp_sample, target.points, input.scales.lcp_radius_m);
 
   RegistrationResult result;
+  const double search_cpu_start_s = threadCpuSeconds();
   SearchOutcome search = searchCongruentSets(input, scorer, params_, start, rng, result);
+  result.search_cpu_s = threadCpuSeconds() - search_cpu_start_s;
   result.reason = search.stop_reason;
   if (search.best_score < 0.0)
   {
@@ -347,6 +428,7 @@ RegistrationResult Super4PCS::align(const PointSet& source, const PointSet& targ
   }
   if (params_.refine_iterations > 0)
   {
+    const double refine_cpu_start_s = threadCpuSeconds();
     const Eigen::Isometry3d refined =
         polishWithIcp(source, target, search.best_transform, input.scales, params_, start, rng);
     const double refined_score = scorer.score(refined);
@@ -357,6 +439,7 @@ RegistrationResult Super4PCS::align(const PointSet& source, const PointSet& targ
       search.best_transform = refined;
       search.best_score = refined_score;
     }
+    result.refine_cpu_s = threadCpuSeconds() - refine_cpu_start_s;
   }
   result.source_to_target = search.best_transform;
   result.lcp_score = search.best_score;
