@@ -308,10 +308,14 @@ struct SweepSetting
 std::vector<SweepSetting> sweepSettings(const PclFpcsParams& shared, int time_s)
 {
   std::vector<SweepSetting> settings;
-  auto add = [&](const std::string& label, double overlap, int bases) {
+  auto add = [&](const std::string& label, double overlap, int bases, double score_threshold = -1.0,
+                 double delta_m = 0.0) {
     SweepSetting setting{label, shared};
     setting.params.overlap = overlap;
     setting.params.max_iterations = bases;
+    setting.params.score_threshold = score_threshold;
+    if (delta_m > 0.0)
+      setting.params.delta_m = delta_m;
     setting.params.max_time_s = time_s;
     settings.push_back(setting);
   };
@@ -319,6 +323,9 @@ std::vector<SweepSetting> sweepSettings(const PclFpcsParams& shared, int time_s)
   add("overlap 0.95, 100 bases", 0.95, 100);
   add("overlap 0.95, 400 bases", 0.95, 400);
   add("overlap 0.95, 1600 bases", 0.95, 1600);
+  // No early stop: the best of all bases, not the first good-enough one.
+  add("overlap 0.95, 1600 bases, no early stop", 0.95, 1600, 0.0);
+  add("overlap 0.95, 400 bases, delta 2 mm", 0.95, 400, -1.0, 0.002);
   add("overlap 0.5, PCL heuristic bases", 0.5, 0);
   return settings;
 }

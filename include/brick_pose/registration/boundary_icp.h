@@ -60,14 +60,16 @@ struct OrientedPoints
 /// The target points that lie on the source surface moved by
 /// `source_to_target`: within max_sigmas robust standard deviations (from
 /// the median absolute offset), and never less than min_offset_m, of the
-/// tangent plane of their nearest source point within radius_m. Each keeps
+/// tangent plane of their nearest source point within reach_m. Each keeps
 /// that point's moved normal. Stereo depth puts "flying pixels" between an
 /// edge and the background, off the surface but in the plane beyond the
-/// edge, where a boundary search would take them for the edge.
+/// edge, where a boundary search would take them for the edge. The nearest
+/// source point is looked for within near_m first (a small radius is a cheap
+/// query), then within reach_m.
 OrientedPoints pointsOnSurface(const std::vector<Eigen::Vector3d>& source,
                                const std::vector<Eigen::Vector3d>& source_normals,
                                const std::vector<Eigen::Vector3d>& target, const Eigen::Isometry3d& source_to_target,
-                               double radius_m, double max_sigmas, double min_offset_m);
+                               double near_m, double reach_m, double max_sigmas, double min_offset_m);
 
 /// A radius that holds about `neighbours` points around a typical point:
 /// the median, over up to `probes` points drawn with `rng`, of the distance

@@ -56,7 +56,7 @@ struct Super4PCSParams
   double max_fit_rms_factor = 1.5;
   /// Iterations of the coarse refinement stage, symmetric hybrid ICP on the
   /// best candidate (0 disables the refinement, both stages).
-  int refine_iterations = 15;
+  int refine_iterations = 8;
   /// Points kept (evenly spread) from the target and from the source for the
   /// coarse stage. The source sample also gives the boundary stage its
   /// point-to-plane pairs. Small: the coarse stage only has to bring the

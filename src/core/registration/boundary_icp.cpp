@@ -179,14 +179,15 @@ SurfaceBoundary findSurfaceBoundary(const std::vector<Eigen::Vector3d>& points,
   for (std::size_t i = 0; i < points.size(); ++i)
   {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d sum_outer = Eigen::Matrix3d::Zero();
+    Eigen::Matrix3d sum_outer = Eigen::Matrix3d::Zero();  // only to estimate a normal
     int count = 0;
     grid.forEachWithin(points[i], radius_m, [&](int j) {
       if (static_cast<std::size_t>(j) == i)
         return;
       const Eigen::Vector3d d = points[j] - points[i];  // centred on i for precision
       sum += d;
-      sum_outer += d * d.transpose();
+      if (!have_normals)
+        sum_outer += d * d.transpose();
       ++count;
     });
     if (count < min_neighbours)
@@ -230,13 +231,17 @@ double neighbourhoodRadius(const std::vector<Eigen::Vector3d>& points, int neigh
 OrientedPoints pointsOnSurface(const std::vector<Eigen::Vector3d>& source,
                                const std::vector<Eigen::Vector3d>& source_normals,
                                const std::vector<Eigen::Vector3d>& target, const Eigen::Isometry3d& source_to_target,
-                               double radius_m, double max_sigmas, double min_offset_m)
+                               double near_m, double reach_m, double max_sigmas, double min_offset_m)
 {
   OrientedPoints on_surface;
-  if (source.empty() || source_normals.size() != source.size() || !(radius_m > 0.0) || !std::isfinite(radius_m))
+  if (source.empty() || source_normals.size() != source.size() || !(reach_m > 0.0) || !std::isfinite(reach_m))
     return on_surface;
-  // The grid is on the unmoved source: target points go into its frame.
-  const PointGrid source_grid(source, radius_m);
+  near_m = std::min(near_m, reach_m);
+  if (!(near_m > 0.0))
+    near_m = reach_m;
+  // The grids are on the unmoved source: target points go into its frame.
+  const PointGrid near_grid(source, near_m);
+  const PointGrid far_grid(source, reach_m);
   const Eigen::Isometry3d target_to_source = source_to_target.inverse();
   std::vector<int> nearest_source(target.size(), -1);
   std::vector<double> offsets(target.size(), 0.0);
@@ -245,7 +250,9 @@ OrientedPoints pointsOnSurface(const std::vector<Eigen::Vector3d>& source,
   for (std::size_t j = 0; j < target.size(); ++j)
   {
     const Eigen::Vector3d in_source = target_to_source * target[j];
-    const int nearest = source_grid.nearestWithin(in_source, radius_m);
+    int nearest = near_grid.nearestWithin(in_source, near_m);
+    if (nearest < 0)
+      nearest = far_grid.nearestWithin(in_source, reach_m);
     if (nearest < 0 || !(source_normals[nearest].squaredNorm() > 0.0))
       continue;
     nearest_source[j] = nearest;

@@ -44,6 +44,10 @@ constexpr int kBoundaryNeighbours = 20;
 // Target points farther off the source surface than this many robust
 // standard deviations of the depth noise take no part in the target boundary.
 constexpr double kOnSurfaceSigmas = 3.0;
+// The refined pose is kept unless its coverage of the target, scored at this
+// many LCP radii, drops by more than this below the 4-point pose's.
+constexpr double kGuardRadiusPerLcpRadius = 2.0;
+constexpr double kMaxCoverageDropByRefinement = 0.03;
 // Candidates verified between two looks at the clock.
 constexpr int kClockStride = 32;
 
@@ -229,6 +233,21 @@ SearchOutcome searchCongruentSets(const SearchInput& input, const LcpScorer& sco
   return outcome;
 }
 
+/// Whether the refined pose still covers the target about as well as the
+/// 4-point pose did; if not, the refinement was pulled off by clutter. The
+/// question is not which pose is more precise, so the coverage is scored at
+/// a wider radius than the LCP's: at the LCP's own radius the right pose can
+/// score lower than a 4-point pose a centimetre off, where the target has
+/// holes (depth lost to stereo) and flying pixels beyond an edge that the
+/// wrong pose happens to cover.
+bool refinementKeepsCoverage(const std::vector<Eigen::Vector3d>& lcp_sample, const std::vector<Eigen::Vector3d>& target,
+                             double lcp_radius_m, const Eigen::Isometry3d& four_point_pose,
+                             const Eigen::Isometry3d& refined_pose)
+{
+  const LcpScorer coverage(lcp_sample, target, kGuardRadiusPerLcpRadius * lcp_radius_m);
+  return coverage.score(refined_pose) >= coverage.score(four_point_pose) - kMaxCoverageDropByRefinement;
+}
+
 /// An evenly spread sample of `cloud` with unit normals (estimated when the
 /// caller gave none; callers' normals need not be unit).
 PointSet sampleWithNormals(const PointSet& cloud, int count, std::mt19937_64& rng)
@@ -243,17 +262,10 @@ PointSet sampleWithNormals(const PointSet& cloud, int count, std::mt19937_64& rn
   return sample;
 }
 
-/// Where the coarse stage leaves the pose, for the boundary stage to start.
-struct CoarseStageResult
-{
-  Eigen::Isometry3d pose;
-  double final_radius_m;
-};
-
 /// Stage 1: symmetric hybrid ICP on small samples from the 4-point pose,
 /// with a wide radius that shrinks: it pulls the pose onto the surface and
 /// most of the way in the plane, cheaply.
-CoarseStageResult coarseIcp(const PointSet& refine_source, const std::vector<Eigen::Vector3d>& refine_target,
+Eigen::Isometry3d coarseIcp(const PointSet& refine_source, const std::vector<Eigen::Vector3d>& refine_target,
                             const Eigen::Isometry3d& start_pose, double start_radius_m, const SearchScales& scales,
                             const Super4PCSParams& params, double remaining_s, std::mt19937_64& rng)
 {
@@ -270,8 +282,7 @@ CoarseStageResult coarseIcp(const PointSet& refine_source, const std::vector<Eig
   // Steps below a fiftieth of the accuracy change nothing that matters.
   icp.min_step_m = 0.02 * params.delta_m;
   icp.min_step_rad = icp.min_step_m / std::max(scales.source_diameter_m, 1e-9);
-  return {refineSymmetricIcp(refine_source.points, refine_source.normals, refine_target, start_pose, icp),
-          icp.final_radius_m};
+  return refineSymmetricIcp(refine_source.points, refine_source.normals, refine_target, start_pose, icp);
 }
 
 /// Stage 2: boundary ICP (boundary_icp.h). Point-to-plane pairs on the
@@ -281,8 +292,8 @@ CoarseStageResult coarseIcp(const PointSet& refine_source, const std::vector<Eig
 /// sample spacing (it cannot tell an edge that overhangs by less from
 /// sampling noise), and along a long face the LCP hardly sees either.
 Eigen::Isometry3d boundaryIcp(const PointSet& source, const PointSet& target, const PointSet& plane_source,
-                              const Eigen::Isometry3d& start_pose, double plane_start_radius_m,
-                              double boundary_start_radius_m, const SearchScales& scales,
+                              const Eigen::Isometry3d& start_pose, double boundary_start_radius_m,
+                              const SearchScales& scales,
                               const Super4PCSParams& params, double remaining_s, std::mt19937_64& rng)
 {
   // The source boundary on a dense sample: a clean source (a model) then
@@ -301,14 +312,17 @@ Eigen::Isometry3d boundaryIcp(const PointSet& source, const PointSet& target, co
   // pixels), in the plane of the source's normals.
   const OrientedPoints target_on_surface =
       pointsOnSurface(plane_source.points, plane_source.normals, boundary_target, start_pose,
+                      2.0 * neighbourSpacing(plane_source.points, 0.5, rng),
                       std::max(boundary_start_radius_m, 3.0 * target_spacing_m), kOnSurfaceSigmas, 0.5 * params.delta_m);
   const SurfaceBoundary target_boundary =
       findSurfaceBoundary(target_on_surface.points, target_on_surface.normals,
                           neighbourhoodRadius(target_on_surface.points, kBoundaryNeighbours, rng));
 
   BoundaryIcpOptions icp;
+  // The coarse stage has brought the source onto the surface: the plane
+  // pairs need no wider radius than the LCP's resolution.
   icp.final_plane_radius_m = std::max(1.5 * scales.lcp_radius_m, 1.5 * target_spacing_m);
-  icp.plane_radius_m = std::max(plane_start_radius_m, icp.final_plane_radius_m);
+  icp.plane_radius_m = icp.final_plane_radius_m;
   // A target boundary point lies up to about a target spacing inside the true
   // edge, and its nearest source boundary point up to half a source spacing
   // along the edge.
@@ -318,8 +332,9 @@ Eigen::Isometry3d boundaryIcp(const PointSet& source, const PointSet& target, co
   icp.max_time_s = remaining_s;
   icp.min_step_m = 0.02 * params.delta_m;
   icp.min_step_rad = icp.min_step_m / std::max(scales.source_diameter_m, 1e-9);
-  return refineBoundaryIcp(plane_source.points, plane_source.normals, source_boundary, boundary_target,
+  auto r = refineBoundaryIcp(plane_source.points, plane_source.normals, source_boundary, boundary_target,
                            target_boundary, start_pose, icp);
+  return r;
 }
 
 /// The local refinement of the best 4-point pose: the coarse stage, then the
@@ -335,18 +350,17 @@ Eigen::Isometry3d polishWithIcp(const PointSet& source, const PointSet& target, 
   // tolerance at the base's ends or by several degrees in the plane of a face
   // (which the LCP hardly sees).
   const double start_radius_m = std::max(3.0 * scales.pair_tolerance_m, 0.08 * scales.source_diameter_m);
-  CoarseStageResult coarse{start_pose, start_radius_m / 2.0};
+  Eigen::Isometry3d coarse_pose = start_pose;
   double remaining_s = params.max_time_s - secondsSince(start);
   if (params.refine_iterations > 0 && remaining_s > 0.0)
-    coarse = coarseIcp(refine_source, refine_target, start_pose, start_radius_m, scales, params, remaining_s, rng);
+    coarse_pose = coarseIcp(refine_source, refine_target, start_pose, start_radius_m, scales, params, remaining_s, rng);
   remaining_s = params.max_time_s - secondsSince(start);
   if (params.fine_refine_iterations <= 0 || remaining_s <= 0.0)
-    return coarse.pose;
-  // The coarse stage leaves the pose close to the surface (the plane pairs
-  // start at twice its final radius) but possibly far from the edges in the
-  // surface, as far as the 4-point pose was: the boundary pairs start wide.
-  return boundaryIcp(source, target, refine_source, coarse.pose, 2.0 * coarse.final_radius_m, start_radius_m,
-                     scales, params, remaining_s, rng);
+    return coarse_pose;
+  // The coarse stage leaves the pose close to the surface but possibly far
+  // from the edges in the surface, as far as the 4-point pose was: the
+  // boundary pairs start as wide as the coarse stage did.
+  return boundaryIcp(source, target, refine_source, coarse_pose, start_radius_m, scales, params, remaining_s, rng);
 }
 }  // namespace
 
@@ -431,13 +445,10 @@ RegistrationResult Super4PCS::align(const PointSet& source, const PointSet& targ
     const double refine_cpu_start_s = threadCpuSeconds();
     const Eigen::Isometry3d refined =
         polishWithIcp(source, target, search.best_transform, input.scales, params_, start, rng);
-    const double refined_score = scorer.score(refined);
-    // ICP cannot be trusted to raise the LCP on flat faces (it slides), but a
-    // clear drop means it was pulled by clutter: then keep the 4-point pose.
-    if (refined_score >= search.best_score - 0.02)
+    if (refinementKeepsCoverage(lcp_sample, target.points, input.scales.lcp_radius_m, search.best_transform, refined))
     {
       search.best_transform = refined;
-      search.best_score = refined_score;
+      search.best_score = scorer.score(refined);
     }
     result.refine_cpu_s = threadCpuSeconds() - refine_cpu_start_s;
   }
