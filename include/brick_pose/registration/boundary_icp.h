@@ -55,6 +55,8 @@ struct OrientedPoints
 {
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector3d> normals;
+
+  std::size_t size() const { return points.size(); }
 };
 
 /// The target points that lie on the source surface moved by
