@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets under fuzz/ (clang, ASan + UBSan, core-only,
-# build dir ws/fuzz) and runs each for FUZZ_SECONDS (default 30) on its seed
-# corpus fuzz/corpus/<target>/. New inputs go to ws/fuzz/corpus/<target>/ (the
+# build dir ws/fuzz or FUZZ_BUILD_DIR; make test runs it on ws/sanitize) and
+# runs each for FUZZ_SECONDS (default 30) on its seed corpus fuzz/corpus/<target>/. New inputs go to ws/fuzz/corpus/<target>/ (the
 # repository's seeds stay as they are); a crash is saved under
 # ws/fuzz/artifacts/<target>/ and makes the script exit non-zero. Inputs under
 # fuzz/regressions/<target>/ (past crashes) are replayed first.
@@ -11,28 +11,13 @@
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 export PATH=/usr/bin:/bin:$PATH
-build_dir=$root/ws/fuzz
+build_dir=${FUZZ_BUILD_DIR:-$root/ws/fuzz}
 seconds=${FUZZ_SECONDS:-30}
 jobs=${FUZZ_BUILD_JOBS:-2}
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
 
-# Eigen switches to its own aligned malloc (offset stored before each block)
-# under AddressSanitizer, while the prebuilt PCL frees and allocates with
-# plain malloc: clouds crossing the boundary then look like heap overflows in
-# handmade_aligned_free. Keep the ABI of the system libraries.
-eigen_flags="-DEIGEN_MALLOC_ALREADY_ALIGNED=1"
-# clang 16: clang 14 rejects the core's lambdas that capture structured
-# bindings (a C++20 feature GCC and clang >= 16 accept in C++17 mode).
-cxx=${FUZZ_CXX:-clang++-16}
-cc=${FUZZ_CC:-clang-16}
-command -v "$cxx" >/dev/null || { echo "fuzz: $cxx missing (scripts/install_deps.sh installs it)" >&2; exit 1; }
-if [[ -f "$build_dir/CMakeCache.txt" ]] && ! grep -q "CMAKE_CXX_COMPILER:.*=$(command -v "$cxx")\$" "$build_dir/CMakeCache.txt"; then
-  rm -rf "$build_dir"  # configured with another compiler: CMake cannot switch in place
-fi
-CC=$cc CXX=$cxx cmake -S "$root" -B "$build_dir" -DBRICK_POSE_CORE_ONLY=ON -DBRICK_POSE_SANITIZE=ON \
-  -DBRICK_POSE_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS="$eigen_flags" >/dev/null || { echo "fuzz: configure failed" >&2; exit 1; }
+"$root/scripts/configure_sanitizer_build.sh" "$build_dir" || { echo "fuzz: configure failed" >&2; exit 1; }
 cmake --build "$build_dir" --target fuzz_targets -j"$jobs" || { echo "fuzz: build failed" >&2; exit 1; }
 
 if [[ $# -gt 0 ]]; then targets=("$@"); else

@@ -39,6 +39,16 @@ const sim::BrickTruth* truthOf(const RenderedCase& rendered, const BrickCandidat
   return label > 0 ? &rendered.synthetic.truth[label - 1] : nullptr;
 }
 
+/// The pipeline's defaults without the wall-clock budget: max_bases bounds
+/// Super4PCS, so a slow machine (a sanitizer build in CI) gets the same
+/// result as a fast one.
+BrickPoseEstimatorParams untimedParams()
+{
+  BrickPoseEstimatorParams params;
+  params.super4pcs.max_time_s = 600.0;
+  return params;
+}
+
 sim::Scene singleBrickScene(const std::string& type, std::uint64_t seed)
 {
   sim::SceneParams params;
@@ -53,7 +63,7 @@ TEST(BrickPoseEstimator, SingleBricksWithinOneDegreeAndThreeMillimetres)
 {
   const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
   const FrontEnd front_end(catalogue);
-  const BrickPoseEstimator estimator(catalogue, BrickPoseEstimatorParams());
+  const BrickPoseEstimator estimator(catalogue, untimedParams());
   int checked = 0;
   for (const std::string type : {"red", "green"})
     for (std::uint64_t seed = 1; seed <= 3; ++seed)
@@ -89,7 +99,7 @@ TEST(BrickPoseEstimator, OccludedFaceStillRegisters)
   const RenderedCase rendered = render(scene, 3);
   ASSERT_LT(rendered.synthetic.truth[0].visible_fraction, 0.95);
   const FrontEndResult result = FrontEnd(catalogue).process(rendered.frame);
-  const BrickPoseEstimator estimator(catalogue, BrickPoseEstimatorParams());
+  const BrickPoseEstimator estimator(catalogue, untimedParams());
   bool registered_blue = false;
   for (const BrickCandidate& candidate : result.candidates)
     if (candidate.type_name == "blue")
@@ -103,7 +113,7 @@ TEST(BrickPoseEstimator, RefinementMethodsShareOneRegistration)
   const RenderedCase rendered = render(singleBrickScene("green", 7), 7);
   const FrontEndResult result = FrontEnd(catalogue).process(rendered.frame);
   ASSERT_EQ(result.candidates.size(), 1u);
-  BrickPoseEstimatorParams params;
+  BrickPoseEstimatorParams params = untimedParams();
   params.refinement = RefinementMethod::kNone;
   const BrickPoseEstimator none(catalogue, params);
   const BrickRegistration registration = none.registerCandidate(result.candidates[0]);

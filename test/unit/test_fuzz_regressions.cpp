@@ -97,6 +97,31 @@ TEST(FuzzRegressions, UnterminatedFlowMapIsAConfigError)
   expectConfigErrorOnly([] { BrickCatalogue::fromYamlString("{ :"); });
 }
 
+// fuzz_catalogue_yaml, fuzz/regressions/fuzz_catalogue_yaml/indented_root_sequence.yaml
+// (minimised from a 117-byte input that timed out): OpenCV 4.6's YAML reader
+// never returns from the cv::FileStorage constructor on an indented root
+// sequence followed by a root scalar with punctuation. A catalogue's root is
+// a map, so such text is now rejected before OpenCV sees it (requireMapRoot
+// in brick_catalogue.cpp). Without the check this test never returns.
+TEST(FuzzRegressions, IndentedRootSequenceIsAConfigErrorNotAHang)
+{
+  expectConfigErrorOnly([] { BrickCatalogue::fromYamlString(" - 0\nb%\n-"); });
+  expectConfigErrorOnly([] { BrickCatalogue::fromYamlString("# comment\n\n - 0\nb:\n-\n"); });
+  expectConfigErrorOnly([] { BrickCatalogue::fromYamlString("%YAML:1.0\n---\n- a\n"); });
+  expectConfigErrorOnly([] { BrickCatalogue::fromYamlString("\n# only a comment\n"); });
+}
+
+// The check must not reject what real catalogues look like.
+TEST(FuzzRegressions, MapRootCheckAcceptsCommentsDirectivesAndMarkers)
+{
+  const std::string bricks = "bricks:\n  - name: red\n    length_m: 0.3\n    width_m: 0.2\n    height_m: 0.2\n"
+                             "    plate_rgb: [200, 25, 25]\n    body_rgb: [215, 150, 150]\n"
+                             "    hsv_min: [170, 120, 25]\n    hsv_max: [7, 255, 255]\n";
+  EXPECT_EQ(BrickCatalogue::fromYamlString(bricks).types().size(), 1u);
+  EXPECT_EQ(BrickCatalogue::fromYamlString("# catalogue\n\n" + bricks).types().size(), 1u);
+  EXPECT_EQ(BrickCatalogue::fromYamlString("%YAML:1.0\n---\n" + bricks).types().size(), 1u);
+}
+
 // fuzz_front_end, fuzz/regressions/fuzz_front_end/one_pixel_frame (also seen
 // killing the manager in the hostile_frames rostest): the HSV segmenter's
 // coarse pass resizes by 1/coarse_factor, which gives an empty image when the

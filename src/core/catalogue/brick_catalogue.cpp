@@ -16,8 +16,38 @@ namespace
 // OpenCV's FileStorage reads YAML only after its "%YAML:1.0" directive, which
 // rosparam's YAML loader rejects. Files stay plain YAML; the directive is
 // added here in memory.
+/// The first line that holds content: not blank, not a comment, not a
+/// directive (%...) and not a document marker.
+std::string firstContentLine(const std::string& text)
+{
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line))
+  {
+    const std::size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#' || line[0] == '%' || line.rfind("---", 0) == 0)
+      continue;
+    return line;
+  }
+  return "";
+}
+
+/// Rejects a root that is not a map before OpenCV parses it: OpenCV 4.6's
+/// YAML reader loops forever on some indented root sequences (e.g.
+/// " - 0\nb%\n-", found by fuzz_catalogue_yaml), and a catalogue's root is
+/// always the map holding `bricks:`.
+void requireMapRoot(const std::string& text)
+{
+  const std::string line = firstContentLine(text);
+  if (line.empty()) throw ConfigError("brick catalogue: empty, expected a top-level list 'bricks:'");
+  if (line[0] == ' ' || line[0] == '\t' || line[0] == '-' || line[0] == '[')
+    throw ConfigError("brick catalogue: the root must be a map with a top-level list 'bricks:', found '" +
+                      line.substr(0, 40) + "'");
+}
+
 cv::FileStorage openYamlText(const std::string& text)
 {
+  requireMapRoot(text);
   const std::string directive = "%YAML:1.0\n";
   const bool has_directive = text.rfind("%YAML", 0) == 0;
   try
