@@ -294,7 +294,7 @@ Eigen::Isometry3d coarseIcp(const PointSet& refine_source, const std::vector<Eig
 Eigen::Isometry3d boundaryIcp(const PointSet& source, const PointSet& target, const PointSet& plane_source,
                               const Eigen::Isometry3d& start_pose, double boundary_start_radius_m,
                               const SearchScales& scales,
-                              const Super4PCSParams& params, double remaining_s, std::mt19937_64& rng)
+                              const Super4PCSParams& params, Clock::time_point start, std::mt19937_64& rng)
 {
   // The source boundary on a dense sample: a clean source (a model) then
   // keeps its exact edge points.
@@ -329,7 +329,10 @@ Eigen::Isometry3d boundaryIcp(const PointSet& source, const PointSet& target, co
   icp.final_boundary_radius_m = std::max(params.delta_m, 1.5 * target_spacing_m + 0.5 * source_spacing_m);
   icp.boundary_radius_m = std::max(boundary_start_radius_m, icp.final_boundary_radius_m);
   icp.max_iterations = params.fine_refine_iterations;
-  icp.max_time_s = remaining_s;
+  // What the boundary search above left of the budget.
+  icp.max_time_s = params.max_time_s - secondsSince(start);
+  if (icp.max_time_s <= 0.0)
+    return start_pose;
   icp.min_step_m = 0.02 * params.delta_m;
   icp.min_step_rad = icp.min_step_m / std::max(scales.source_diameter_m, 1e-9);
   auto r = refineBoundaryIcp(plane_source.points, plane_source.normals, source_boundary, boundary_target,
@@ -360,7 +363,7 @@ Eigen::Isometry3d polishWithIcp(const PointSet& source, const PointSet& target, 
   // The coarse stage leaves the pose close to the surface but possibly far
   // from the edges in the surface, as far as the 4-point pose was: the
   // boundary pairs start as wide as the coarse stage did.
-  return boundaryIcp(source, target, refine_source, coarse_pose, start_radius_m, scales, params, remaining_s, rng);
+  return boundaryIcp(source, target, refine_source, coarse_pose, start_radius_m, scales, params, start, rng);
 }
 }  // namespace
 
