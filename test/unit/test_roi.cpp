@@ -42,9 +42,10 @@ pcl::PointCloud<pcl::PointXYZ> rectanglePoints(const Eigen::Matrix3d& rotation, 
 }
 
 /// Mask of a quadrilateral in image pixels, sampled at pixel centres, with
-/// an optional notch (a polygon removed from it).
+/// an optional notch (a polygon removed from it) and spur (a convex polygon
+/// added to it).
 cv::Mat rasterise(const std::array<Eigen::Vector2d, 4>& quad, cv::Size size,
-                  const std::vector<Eigen::Vector2d>& notch = {})
+                  const std::vector<Eigen::Vector2d>& notch = {}, const std::vector<Eigen::Vector2d>& spur = {})
 {
   auto inside = [](const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {
     bool positive = false, negative = false;
@@ -63,7 +64,8 @@ cv::Mat rasterise(const std::array<Eigen::Vector2d, 4>& quad, cv::Size size,
     for (int u = 0; u < size.width; ++u)
     {
       const Eigen::Vector2d p(u, v);
-      if (inside(polygon, p) && !(notch.size() >= 3 && inside(notch, p))) mask.at<std::uint8_t>(v, u) = 255;
+      const bool in_quad = inside(polygon, p) && !(notch.size() >= 3 && inside(notch, p));
+      if (in_quad || (spur.size() >= 3 && inside(spur, p))) mask.at<std::uint8_t>(v, u) = 255;
     }
   return mask;
 }
@@ -158,12 +160,12 @@ TEST(LeastAreaQuad, ChamferedRectangleReducesToTheRectangle)
   EXPECT_FALSE(reduceToLeastAreaQuad({{0, 0}, {1, 0}, {0, 1}}));
 }
 
-/// The masks of these tests are sampled at pixel centres, so their outline
-/// lies exactly half a pixel step inside the edges.
+/// The masks of these tests are sampled at pixel centres: the outer
+/// envelope of their outline touches the edges (no anti-aliasing margin).
 QuadFitParams centreSampled()
 {
   QuadFitParams params;
-  params.edge_offset_px = 0.5;
+  params.edge_offset_px = 0.0;
   return params;
 }
 
@@ -209,6 +211,50 @@ TEST(LeastAreaQuad, NotchedEdgeStillGivesTheFullRectangle)
   double hull_to_corner = 1e9;
   for (const cv::Point& p : hull) hull_to_corner = std::min(hull_to_corner, (Eigen::Vector2d(p.x, p.y) - truth[0]).norm());
   EXPECT_GT(hull_to_corner, 10.0) << "the hull alone misses the occluded corner";
+}
+
+TEST(LeastAreaQuad, SpurOnAnEdgeDoesNotTiltIt)
+{
+  // A blob of the plate's colour stuck to one long edge near its end (a
+  // bleeding side face, a neighbour's sliver): the enclosing quad's side
+  // runs over its tip, tilted and up to 5 px outside the edge.
+  for (const double angle : {0.3, 0.785, 1.2})
+  {
+    const Eigen::Vector2d centre(210.0, 160.0);
+    const auto truth = rotatedRectangle(centre, 240.0, 80.0, angle);
+    const Eigen::Vector2d along(std::cos(angle), std::sin(angle)), outward(-std::sin(angle), std::cos(angle));
+    const Eigen::Vector2d base = centre + 90.0 * along + 40.0 * outward;  // on the long edge, near corner 0
+    const std::vector<Eigen::Vector2d> spur = {base - 12.0 * along - outward, base + 12.0 * along - outward,
+                                               base + 8.0 * along + 5.0 * outward, base - 8.0 * along + 5.0 * outward};
+    const cv::Mat mask = rasterise(truth, {420, 320}, {}, spur);
+    const auto quad = fitLeastAreaQuad(largestOutline(mask), centreSampled());
+    ASSERT_TRUE(quad);
+    EXPECT_LT(worstCornerErrorPx(*quad, truth), 0.6) << "angle " << angle;
+  }
+}
+
+TEST(LeastAreaQuad, RaggedEdgesGiveTheEdgesNotTheirMean)
+{
+  // Low light: edge pixels drop out of the colour threshold at random, so
+  // the outline dips 1-3 px into the plate all along its edges. Neither the
+  // dips (convexity defects as deep as the whole side) nor their mean
+  // should move the sides.
+  std::mt19937 generator(11);
+  std::uniform_int_distribution<int> dip(0, 11);  // one outline pixel in 12 starts a dip
+  std::uniform_int_distribution<int> depth_px(1, 3);
+  // Not along the pixel grid: a binary mask only places such an edge within
+  // a pixel (between its last row in and the first out), ragged or not.
+  for (const double angle : {0.1, 0.42, 0.785, 1.37})
+  {
+    const auto truth = rotatedRectangle({205.4, 158.2}, 260.0, 90.0, angle);
+    cv::Mat mask = rasterise(truth, {420, 320});
+    cv::Mat eroded = mask.clone();
+    for (const cv::Point& p : largestOutline(mask))
+      if (dip(generator) == 0) cv::circle(eroded, p, depth_px(generator), cv::Scalar(0), cv::FILLED);
+    const auto quad = fitLeastAreaQuad(largestOutline(eroded), centreSampled());
+    ASSERT_TRUE(quad);
+    EXPECT_LT(worstCornerErrorPx(*quad, truth), 0.8) << "angle " << angle;
+  }
 }
 
 TEST(LeastAreaQuad, DiagonalIntersectionIsPerspectiveCentre)

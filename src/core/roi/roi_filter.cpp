@@ -147,6 +147,8 @@ void RoiFilterParams::validate() const
   require(edge_probe_offset_px > 0.0, "edge_probe_offset_px", "must be > 0");
   require(occluder_margin_m > 0.0, "occluder_margin_m", "must be > 0");
   require(quad.side_band_px > 0.0, "quad.side_band_px", "must be > 0");
+  require(quad.side_search_px >= 0.0, "quad.side_search_px", "must be >= 0");
+  require(quad.edge_quantile >= 0.0 && quad.edge_quantile <= 1.0, "quad.edge_quantile", "must be in [0, 1]");
   require(quad.min_side_points >= 2, "quad.min_side_points", "must be >= 2");
 }
 
