@@ -109,6 +109,10 @@ TEST(FuzzRegressions, IndentedRootSequenceIsAConfigErrorNotAHang)
   expectConfigErrorOnly([] { BrickCatalogue::fromYamlString("# comment\n\n - 0\nb:\n-\n"); });
   expectConfigErrorOnly([] { BrickCatalogue::fromYamlString("%YAML:1.0\n---\n- a\n"); });
   expectConfigErrorOnly([] { BrickCatalogue::fromYamlString("\n# only a comment\n"); });
+  // Five more timeouts of a 3-minute run, all a root line of dashes ("----t").
+  expectConfigErrorOnly([] { BrickCatalogue::fromYamlString("----t\n*\n\n"); });
+  expectConfigErrorOnly([] { BrickCatalogue::fromYamlString("#-\n----\xb9w\nn\n"); });
+  expectConfigErrorOnly([] { BrickCatalogue::fromYamlString("---\n!- -\xe4\n-\n "); });
 }
 
 // The check must not reject what real catalogues look like.

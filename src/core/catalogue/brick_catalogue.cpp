@@ -1,5 +1,6 @@
 #include "brick_pose/catalogue/brick_catalogue.h"
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -16,6 +17,14 @@ namespace
 // OpenCV's FileStorage reads YAML only after its "%YAML:1.0" directive, which
 // rosparam's YAML loader rejects. Files stay plain YAML; the directive is
 // added here in memory.
+/// "---" alone (trailing blanks or a comment allowed); "----x" is content.
+bool isDocumentMarker(const std::string& line)
+{
+  if (line.rfind("---", 0) != 0) return false;
+  const std::size_t rest = line.find_first_not_of(" \t\r", 3);
+  return rest == std::string::npos || (rest > 3 && line[rest] == '#');
+}
+
 /// The first line that holds content: not blank, not a comment, not a
 /// directive (%...) and not a document marker.
 std::string firstContentLine(const std::string& text)
@@ -25,7 +34,7 @@ std::string firstContentLine(const std::string& text)
   while (std::getline(lines, line))
   {
     const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#' || line[0] == '%' || line.rfind("---", 0) == 0)
+    if (first == std::string::npos || line[first] == '#' || line[0] == '%' || isDocumentMarker(line))
       continue;
     return line;
   }
@@ -33,14 +42,18 @@ std::string firstContentLine(const std::string& text)
 }
 
 /// Rejects a root that is not a map before OpenCV parses it: OpenCV 4.6's
-/// YAML reader loops forever on some indented root sequences (e.g.
-/// " - 0\nb%\n-", found by fuzz_catalogue_yaml), and a catalogue's root is
+/// YAML reader loops forever on some roots that start with an indented
+/// sequence, a line of dashes or a tag (e.g. " - 0\nb%\n-" and
+/// "---\n!- -\n-", found by fuzz_catalogue_yaml), and a catalogue's root is
 /// always the map holding `bricks:`.
 void requireMapRoot(const std::string& text)
 {
   const std::string line = firstContentLine(text);
   if (line.empty()) throw ConfigError("brick catalogue: empty, expected a top-level list 'bricks:'");
-  if (line[0] == ' ' || line[0] == '\t' || line[0] == '-' || line[0] == '[')
+  // A key starts the root map: a letter, '_', a quote, or a flow map's '{'.
+  // Tags, anchors, sequences and indentation are not a catalogue.
+  const unsigned char first = static_cast<unsigned char>(line[0]);
+  if (!(std::isalpha(first) || first == '_' || first == '"' || first == '\'' || first == '{'))
     throw ConfigError("brick catalogue: the root must be a map with a top-level list 'bricks:', found '" +
                       line.substr(0, 40) + "'");
 }
