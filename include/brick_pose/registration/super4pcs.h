@@ -61,8 +61,8 @@ struct Super4PCSParams
   /// coarse stage. The source sample also gives the boundary stage its
   /// point-to-plane pairs. Small: the coarse stage only has to bring the
   /// pose within reach of the boundary stage.
-  int refine_sample_size = 300;
-  int refine_source_sample_size = 300;
+  int refine_sample_size = 200;
+  int refine_source_sample_size = 200;
   /// Iterations of the boundary stage (0 disables it), and the points kept
   /// from the target and from the source to find their boundaries: dense,
   /// because the in-surface position of a face is only as well known as its
