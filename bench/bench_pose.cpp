@@ -6,8 +6,8 @@
 // Frames cycle through single bricks (half of them), organised and
 // unorganised piles, and normal / sunlight / low-light lighting, 0.6-1.5 m
 // away, 1280x720. For every front-end candidate that matches a ground-truth
-// brick (the truth instance under the candidate's centre pixel, on its top
-// face, of the candidate's type) Super4PCS runs once, and that same
+// brick (the truth instance whose top face holds most of the candidate's
+// pixels, of the candidate's type) Super4PCS runs once, and that same
 // registration is refined by each method: none, correction (paper mode),
 // correction (full mode, the pipeline default) and ICP. Errors are taken
 // modulo the top face's half-turn symmetry. Only bricks whose top face is at
@@ -295,23 +295,30 @@ sim::SceneGenerator generatorFor(const BrickCatalogue& catalogue, sim::SceneKind
 // ---------------------------------------------------------------------------
 // Matching and measurement errors
 // ---------------------------------------------------------------------------
-/// The truth brick under the candidate's centre pixel, on its top face and of
-/// its type; the reason otherwise.
+/// The truth brick whose top face holds most of the candidate's pixels (at
+/// least half), if of the candidate's type; the reason otherwise. Not the
+/// brick under the candidate's centre pixel: a plate with another brick lying
+/// across its middle is measured whole from its two visible ends, and its
+/// centre pixel then shows the brick on top.
 const sim::BrickTruth* matchTruth(const BrickCandidate& candidate, const sim::SyntheticFrame& frame,
                                   std::string& reason)
 {
-  const int u_px = static_cast<int>(std::lround(candidate.centroid_px.x()));
-  const int v_px = static_cast<int>(std::lround(candidate.centroid_px.y()));
-  if (u_px < 0 || v_px < 0 || u_px >= frame.instance_labels.cols || v_px >= frame.instance_labels.rows)
+  std::map<int, int> top_face_pixels;  // instance -> count
+  const auto* instances = frame.instance_labels.ptr<std::uint16_t>(0);
+  const auto* faces = frame.face_labels.ptr<std::uint8_t>(0);
+  for (const int pixel : candidate.pixel_indices)
+    if (instances[pixel] != 0 && faces[pixel] == static_cast<std::uint8_t>(sim::CuboidFace::kTop))
+      ++top_face_pixels[instances[pixel]];
+  int instance = 0, most = 0;
+  for (const auto& [id, count] : top_face_pixels)
+    if (count > most)
+    {
+      instance = id;
+      most = count;
+    }
+  if (instance == 0 || 2 * most < static_cast<int>(candidate.pixel_indices.size()))
   {
-    reason = "centre pixel outside the image";
-    return nullptr;
-  }
-  const int instance = frame.instance_labels.at<std::uint16_t>(v_px, u_px);
-  const auto face = static_cast<sim::CuboidFace>(frame.face_labels.at<std::uint8_t>(v_px, u_px));
-  if (instance == 0 || face != sim::CuboidFace::kTop)
-  {
-    reason = "centre pixel not on a top face";
+    reason = "not mostly one top face";
     return nullptr;
   }
   const sim::BrickTruth& truth = frame.truth[static_cast<std::size_t>(instance - 1)];
