@@ -158,6 +158,26 @@ std::optional<Eigen::Isometry3d> solveStep(NormalEquations& equations, const Eig
   return step;
 }
 
+/// The normal at each source boundary point, for the flying-pixel check of
+/// the boundary pairs: that of its nearest source point within radius_m
+/// (zero, no check, when there is none).
+std::vector<Eigen::Vector3d> normalsAtBoundary(const std::vector<Eigen::Vector3d>& source,
+                                               const std::vector<Eigen::Vector3d>& source_normals,
+                                               const SurfaceBoundary& source_boundary, double radius_m)
+{
+  std::vector<Eigen::Vector3d> normals(source_boundary.size(), Eigen::Vector3d::Zero());
+  if (source_boundary.points.empty())
+    return normals;
+  const PointGrid source_grid(source, radius_m);
+  for (std::size_t k = 0; k < source_boundary.size(); ++k)
+  {
+    const int nearest = source_grid.nearestWithin(source_boundary.points[k], radius_m);
+    if (nearest >= 0)
+      normals[k] = source_normals[nearest];
+  }
+  return normals;
+}
+
 double shrinkFactor(double start, double final, int iterations)
 {
   if (iterations <= 1 || !(start > final))
@@ -283,22 +303,10 @@ Eigen::Isometry3d refineBoundaryIcp(const std::vector<Eigen::Vector3d>& source,
   const double plane_shrink = shrinkFactor(plane_radius_start_m, options.final_plane_radius_m, options.max_iterations);
   const double boundary_shrink =
       shrinkFactor(boundary_radius_start_m, options.final_boundary_radius_m, options.max_iterations);
-  const double min_outlier_offset_m = kMinOutlierOffsetPerRadius * std::min(plane_radius_start_m, options.final_plane_radius_m);
+  const double min_outlier_offset_m = kMinOutlierOffsetPerRadius * options.final_plane_radius_m;
 
-  // The normal at each source boundary point, for the flying-pixel check:
-  // that of its nearest source point.
-  std::vector<Eigen::Vector3d> boundary_normals(source_boundary.size(), Eigen::Vector3d::Zero());
-  if (!source_boundary.points.empty())
-  {
-    const PointGrid source_grid(source, boundary_radius_start_m);
-    for (std::size_t k = 0; k < source_boundary.size(); ++k)
-    {
-      const int nearest = source_grid.nearestWithin(source_boundary.points[k], boundary_radius_start_m);
-      if (nearest >= 0)
-        boundary_normals[k] = source_normals[nearest];
-    }
-  }
-
+  const std::vector<Eigen::Vector3d> boundary_normals =
+      normalsAtBoundary(source, source_normals, source_boundary, boundary_radius_start_m);
   PointGrid target_grid(target, plane_radius_start_m);
   PointGrid boundary_grid(source_boundary.points, boundary_radius_start_m);
   double plane_radius_m = plane_radius_start_m;

@@ -285,59 +285,79 @@ Eigen::Isometry3d coarseIcp(const PointSet& refine_source, const std::vector<Eig
   return refineSymmetricIcp(refine_source.points, refine_source.normals, refine_target, start_pose, icp);
 }
 
+/// What the boundary stage registers: a dense target sample, the target's
+/// boundary and the source's.
+struct BoundaryStageInput
+{
+  std::vector<Eigen::Vector3d> target_sample;
+  SurfaceBoundary target_boundary;
+  SurfaceBoundary source_boundary;
+  double target_spacing_m = 0.0;  ///< 0: too few points for a boundary
+  double source_spacing_m = 0.0;
+};
+
+/// The boundaries of a dense source sample (a clean source, a model, then
+/// keeps its exact edge points) and of the target's points that lie on the
+/// source surface at `pose` (no flying pixels), in the plane of the source's
+/// normals.
+BoundaryStageInput findBoundaries(const PointSet& source, const PointSet& target, const PointSet& plane_source,
+                                  const Eigen::Isometry3d& pose, double reach_m, const Super4PCSParams& params,
+                                  std::mt19937_64& rng)
+{
+  BoundaryStageInput input;
+  const PointSet source_sample =
+      source.subset(uniformSubsample(source.points, params.fine_refine_source_sample_size, rng));
+  input.source_spacing_m = neighbourSpacing(source_sample.points, 0.5, rng);
+  input.target_sample = target.subset(uniformSubsample(target.points, params.fine_refine_sample_size, rng)).points;
+  input.target_spacing_m = neighbourSpacing(input.target_sample, 0.5, rng);
+  if (!(input.source_spacing_m > 0.0) || !(input.target_spacing_m > 0.0))
+    return input;
+  input.source_boundary = findSurfaceBoundary(source_sample.points, source_sample.normals,
+                                              neighbourhoodRadius(source_sample.points, kBoundaryNeighbours, rng));
+  const OrientedPoints on_surface =
+      pointsOnSurface(plane_source.points, plane_source.normals, input.target_sample, pose,
+                      2.0 * neighbourSpacing(plane_source.points, 0.5, rng),
+                      std::max(reach_m, 3.0 * input.target_spacing_m), kOnSurfaceSigmas, 0.5 * params.delta_m);
+  input.target_boundary = findSurfaceBoundary(on_surface.points, on_surface.normals,
+                                              neighbourhoodRadius(on_surface.points, kBoundaryNeighbours, rng));
+  return input;
+}
+
 /// Stage 2: boundary ICP (boundary_icp.h). Point-to-plane pairs on the
-/// coarse stage's samples hold the surface; the boundaries of a dense source
-/// sample and of the target give the in-surface position and rotation, which
-/// the hybrid step of stage 1 leaves within a dead zone of about the target's
-/// sample spacing (it cannot tell an edge that overhangs by less from
-/// sampling noise), and along a long face the LCP hardly sees either.
+/// coarse stage's samples hold the surface; the boundaries of both clouds
+/// give the in-surface position and rotation, which the hybrid step of
+/// stage 1 leaves within a dead zone of about the target's sample spacing (it
+/// cannot tell an edge that overhangs by less from sampling noise), and along
+/// a long face the LCP hardly sees either.
 Eigen::Isometry3d boundaryIcp(const PointSet& source, const PointSet& target, const PointSet& plane_source,
                               const Eigen::Isometry3d& start_pose, double boundary_start_radius_m,
-                              const SearchScales& scales,
-                              const Super4PCSParams& params, Clock::time_point start, std::mt19937_64& rng)
+                              const SearchScales& scales, const Super4PCSParams& params, Clock::time_point start,
+                              std::mt19937_64& rng)
 {
-  // The source boundary on a dense sample: a clean source (a model) then
-  // keeps its exact edge points.
-  const PointSet boundary_source = source.subset(uniformSubsample(source.points, params.fine_refine_source_sample_size, rng));
-  const double source_spacing_m = neighbourSpacing(boundary_source.points, 0.5, rng);
-  const std::vector<Eigen::Vector3d> boundary_target =
-      target.subset(uniformSubsample(target.points, params.fine_refine_sample_size, rng)).points;
-  const double target_spacing_m = neighbourSpacing(boundary_target, 0.5, rng);
-  if (!(source_spacing_m > 0.0) || !(target_spacing_m > 0.0))
+  const BoundaryStageInput input =
+      findBoundaries(source, target, plane_source, start_pose, boundary_start_radius_m, params, rng);
+  if (!(input.target_spacing_m > 0.0) || !(input.source_spacing_m > 0.0))
     return start_pose;
-  const SurfaceBoundary source_boundary = findSurfaceBoundary(
-      boundary_source.points, boundary_source.normals,
-      neighbourhoodRadius(boundary_source.points, kBoundaryNeighbours, rng));
-  // The target's boundary among its points on the source surface (no flying
-  // pixels), in the plane of the source's normals.
-  const OrientedPoints target_on_surface =
-      pointsOnSurface(plane_source.points, plane_source.normals, boundary_target, start_pose,
-                      2.0 * neighbourSpacing(plane_source.points, 0.5, rng),
-                      std::max(boundary_start_radius_m, 3.0 * target_spacing_m), kOnSurfaceSigmas, 0.5 * params.delta_m);
-  const SurfaceBoundary target_boundary =
-      findSurfaceBoundary(target_on_surface.points, target_on_surface.normals,
-                          neighbourhoodRadius(target_on_surface.points, kBoundaryNeighbours, rng));
-
   BoundaryIcpOptions icp;
   // The coarse stage has brought the source onto the surface: the plane
   // pairs need no wider radius than the LCP's resolution.
-  icp.final_plane_radius_m = std::max(1.5 * scales.lcp_radius_m, 1.5 * target_spacing_m);
+  icp.final_plane_radius_m = std::max(1.5 * scales.lcp_radius_m, 1.5 * input.target_spacing_m);
   icp.plane_radius_m = icp.final_plane_radius_m;
   // A target boundary point lies up to about a target spacing inside the true
   // edge, and its nearest source boundary point up to half a source spacing
   // along the edge.
-  icp.final_boundary_radius_m = std::max(params.delta_m, 1.5 * target_spacing_m + 0.5 * source_spacing_m);
+  icp.final_boundary_radius_m =
+      std::max(params.delta_m, 1.5 * input.target_spacing_m + 0.5 * input.source_spacing_m);
   icp.boundary_radius_m = std::max(boundary_start_radius_m, icp.final_boundary_radius_m);
   icp.max_iterations = params.fine_refine_iterations;
-  // What the boundary search above left of the budget.
+  // What the boundary search left of the budget.
   icp.max_time_s = params.max_time_s - secondsSince(start);
   if (icp.max_time_s <= 0.0)
     return start_pose;
   icp.min_step_m = 0.02 * params.delta_m;
   icp.min_step_rad = icp.min_step_m / std::max(scales.source_diameter_m, 1e-9);
-  auto r = refineBoundaryIcp(plane_source.points, plane_source.normals, source_boundary, boundary_target,
-                           target_boundary, start_pose, icp);
-  return r;
+  return refineBoundaryIcp(plane_source.points, plane_source.normals, input.source_boundary, input.target_sample,
+                           input.target_boundary, start_pose, icp);
 }
 
 /// The local refinement of the best 4-point pose: the coarse stage, then the
@@ -356,7 +376,8 @@ Eigen::Isometry3d polishWithIcp(const PointSet& source, const PointSet& target, 
   Eigen::Isometry3d coarse_pose = start_pose;
   double remaining_s = params.max_time_s - secondsSince(start);
   if (params.refine_iterations > 0 && remaining_s > 0.0)
-    coarse_pose = coarseIcp(refine_source, refine_target, start_pose, start_radius_m, scales, params, remaining_s, rng);
+    coarse_pose =
+        coarseIcp(refine_source, refine_target, start_pose, start_radius_m, scales, params, remaining_s, rng);
   remaining_s = params.max_time_s - secondsSince(start);
   if (params.fine_refine_iterations <= 0 || remaining_s <= 0.0)
     return coarse_pose;
