@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "brick_pose/catalogue/brick_catalogue.h"
@@ -80,6 +81,12 @@ TEST(PclBaselines, RejectBadInputAndParameters)
   PclFpcsParams fpcs;
   fpcs.max_time_s = 0;
   EXPECT_THROW(alignPclFpcs(good, good, fpcs), ConfigError);
+  fpcs = PclFpcsParams();
+  fpcs.max_iterations = -1;
+  EXPECT_THROW(alignPclFpcs(good, good, fpcs), ConfigError);
+  fpcs = PclFpcsParams();
+  fpcs.score_threshold = std::nan("");
+  EXPECT_THROW(alignPclKfpcs(good, good, fpcs), ConfigError);
   PclIcpParams icp;
   icp.max_iterations = 0;
   EXPECT_THROW(alignPclIcp(good, good, icp), ConfigError);

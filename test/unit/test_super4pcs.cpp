@@ -396,6 +396,31 @@ TEST(Super4PCS, RecoversALongFaceAlongItsAxis)
   }
 }
 
+TEST(Super4PCS, RefinesTinyAndSparseCloudsWithoutBreaking)
+{
+  // Too few points for a boundary (the boundary stage must fall back to
+  // plain point-to-plane) and a source without normals.
+  for (const int side : {3, 5, 8})
+  {
+    PointSet patch;
+    for (int i = 0; i < side; ++i)
+      for (int j = 0; j < side; ++j)
+        patch.points.emplace_back(0.02 * i, 0.03 * j, 0.001 * ((i * 7 + j * 3) % 5));
+    Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+    truth.translation() = Eigen::Vector3d(0.01, -0.02, 1.0);
+    PointSet target;
+    for (const Eigen::Vector3d& p : patch.points)
+      target.points.push_back(truth * p);
+    Super4PCSParams params = testParams(700 + side);
+    params.max_bases = 50;
+    const RegistrationResult result = Super4PCS(params).align(patch, target);
+    SCOPED_TRACE("side " + std::to_string(side));
+    EXPECT_TRUE(result.source_to_target.matrix().allFinite());
+    EXPECT_GE(result.lcp_score, 0.0);
+    EXPECT_LE(result.lcp_score, 1.0);
+  }
+}
+
 TEST(Super4PCS, SameSeedGivesIdenticalResult)
 {
   const BrickType brick = redBrick();
