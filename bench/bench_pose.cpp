@@ -405,6 +405,7 @@ public:
     : catalogue_(catalogue), camera_(PinholeCamera::d415Color1280x720()), front_end_(catalogue)
   {
     for (const Method method : kMethods) estimators_.emplace_back(catalogue, estimatorParamsFor(method));
+    accuracy_registrar_.emplace(catalogue, accuracyRegistrationParams());
     for (const sim::SceneKind kind :
          {sim::SceneKind::kSingle, sim::SceneKind::kOrganisedPile, sim::SceneKind::kUnorganisedPile})
       generators_.emplace(kind, generatorFor(catalogue, kind));
@@ -416,6 +417,18 @@ private:
   const BrickPoseEstimator& defaultEstimator() const
   {
     return estimators_[static_cast<std::size_t>(Method::kCorrectionFull)];
+  }
+
+  /// The registration every method starts from in the accuracy table. The
+  /// pipeline's default stops Super4PCS early when the correction follows
+  /// (correction_good_enough_ratio), which the correction does not feel but
+  /// ICP would: here Super4PCS runs to its own stop score, as it does in the
+  /// pipeline's icp mode, so that ICP gets a fair start.
+  static BrickPoseEstimatorParams accuracyRegistrationParams()
+  {
+    BrickPoseEstimatorParams params = estimatorParamsFor(Method::kCorrectionFull);
+    params.correction_good_enough_ratio = params.super4pcs.good_enough_ratio;
+    return params;
   }
 
   /// The pipeline on one frame, from the raw buffers, as the node runs it:
@@ -432,6 +445,7 @@ private:
   PinholeCamera camera_;
   FrontEnd front_end_;
   std::vector<BrickPoseEstimator> estimators_;  // one per Method, in kMethods order
+  std::optional<BrickPoseEstimator> accuracy_registrar_;
   std::map<sim::SceneKind, sim::SceneGenerator> generators_;
 };
 
@@ -520,12 +534,11 @@ void PoseBench::runFrame(int index, std::uint64_t base_seed, BenchResults& resul
   const sim::SyntheticFrame synthetic = sim::SyntheticRig(camera_, sensor).render(scene, spec.seed);
 
   FrontEndResult front_end_result;
-  std::vector<std::optional<BrickRegistration>> registrations;
   if (spec.kind == sim::SceneKind::kSingle)
-    registrations = runTimedPipeline(synthetic, front_end_result, results);
+    runTimedPipeline(synthetic, front_end_result, results);
   else
   {
-    // Piles are registered lazily below, only for the bricks that count.
+    // Bricks are registered for accuracy below, only those that count.
     FrameHeader header;
     front_end_result = front_end_.process(makeRgbdFrame(synthetic.rgb, synthetic.depth_mm, camera_, header));
   }
@@ -559,8 +572,7 @@ void PoseBench::runFrame(int index, std::uint64_t base_seed, BenchResults& resul
     // for numbers that are not reported.
     if (record.exclusion.empty())
     {
-      const std::optional<BrickRegistration> registration =
-          registrations.empty() ? tryRegister(defaultEstimator(), candidate) : registrations[c];
+      const std::optional<BrickRegistration> registration = tryRegister(*accuracy_registrar_, candidate);
       evaluateCandidate(candidate, registration, *truth, record);
       if (!record.registered) record.exclusion = "Super4PCS failed";
     }
@@ -830,7 +842,8 @@ std::string markdownTable(const BenchResults& results, const std::vector<MethodS
         << formatted("%.3f", percentile(summary.translation_error_mm, 0.5)) << " | "
         << formatted("%.3f", percentile(summary.translation_error_mm, 0.95)) << " | " << timeCell(summary, 0.5)
         << " | " << timeCell(summary, 0.95) << " | " << summary.failed << " |\n";
-  out << "\nSuper4PCS (run once per brick, shared by all methods): median "
+  out << "\nSuper4PCS (run once per brick, shared by all methods, to its own stop score; the running pipeline "
+         "stops it earlier when the correction follows, see the latency section): median "
       << formatted("%.1f", percentile(registration.time_ms, 0.5)) << " ms, p95 "
       << formatted("%.1f", percentile(registration.time_ms, 0.95)) << " ms, success "
       << registration.succeeded << " / " << registration.attempted << " ("

@@ -46,6 +46,7 @@ BrickPoseEstimatorParams untimedParams()
 {
   BrickPoseEstimatorParams params;
   params.super4pcs.max_time_s = 600.0;
+  params.partial_face_max_time_s = 600.0;
   return params;
 }
 
@@ -135,11 +136,32 @@ TEST(BrickPoseEstimator, UnknownTypeAndEmptySegmentAreInputErrors)
   EXPECT_THROW(estimator.registerCandidate(candidate), InputError);
 }
 
+TEST(BrickPoseEstimator, BadBudgetsAndStopRatiosNameTheParameter)
+{
+  const auto error_of = [](const BrickPoseEstimatorParams& params) {
+    try
+    {
+      BrickPoseEstimator(BrickCatalogue::mbzirc2020(), params);
+    }
+    catch (const ConfigError& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  BrickPoseEstimatorParams params;
+  params.partial_face_max_time_s = 0.0;
+  EXPECT_NE(error_of(params).find("partial_face_max_time_s"), std::string::npos);
+  params = BrickPoseEstimatorParams();
+  params.correction_good_enough_ratio = 1.5;
+  EXPECT_NE(error_of(params).find("correction_good_enough_ratio"), std::string::npos);
+}
+
 TEST(PipelineConfig, ParametersAreReadAndErrorsNameThem)
 {
   const std::map<std::string, std::string> values = {
       {"mode", "region_growing"}, {"voxel_leaf_m", "0"}, {"refinement", "icp"}, {"correction_mode", "paper"},
-      {"max_time_s", "0.05"}};
+      {"max_time_s", "0.05"}, {"partial_face_max_time_s", "0.02"}, {"correction_good_enough_ratio", "0.7"}};
   const ParamLookup lookup = [&values](const std::string& name) -> std::optional<std::string> {
     const auto found = values.find(name);
     return found == values.end() ? std::nullopt : std::optional<std::string>(found->second);
@@ -151,6 +173,8 @@ TEST(PipelineConfig, ParametersAreReadAndErrorsNameThem)
   EXPECT_EQ(estimator.refinement, RefinementMethod::kIcp);
   EXPECT_EQ(estimator.correction.mode, CorrectionMode::kPaper);
   EXPECT_DOUBLE_EQ(estimator.super4pcs.max_time_s, 0.05);
+  EXPECT_DOUBLE_EQ(estimator.partial_face_max_time_s, 0.02);
+  EXPECT_DOUBLE_EQ(estimator.correction_good_enough_ratio, 0.7);
 
   const auto error_of = [](const std::string& name, const std::string& value) {
     try

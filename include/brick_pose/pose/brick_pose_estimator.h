@@ -25,6 +25,19 @@ struct BrickPoseEstimatorParams
   registration::Super4PCSParams super4pcs;
   /// Grid step of the artificial model cloud of each brick type.
   double model_spacing_m = 0.01;
+  /// Super4PCS's good_enough_ratio when the correction follows. The
+  /// correction takes tilt, yaw and position from the measured face, so the
+  /// registration only has to put the model on the face (any yaw will do);
+  /// waiting for the LCP of a near-perfect 4-point pose mostly spends the
+  /// time budget. 0.75 of the visible fraction still rejects a model lying
+  /// across a long face.
+  double correction_good_enough_ratio = 0.75;
+  /// Super4PCS time budget (s) for a face the front end measured as partial
+  /// (cut by an occluder or the image border). Its LCP cannot be judged
+  /// against a well-known overlap, so the search tends to run to the end of
+  /// its budget; and the service never picks such a face, whose pose only
+  /// serves the pickable test. The best pose found by then is kept.
+  double partial_face_max_time_s = 0.03;
   RefinementMethod refinement = kDefaultRefinementMethod;
   PoseCorrectionParameters correction;
   IcpParameters icp;

@@ -19,7 +19,8 @@ BrickCatalogue catalogueFrom(const ParamLookup& lookup);
 /// Throws ConfigError naming the parameter.
 FrontEndParams frontEndParamsFrom(const ParamLookup& lookup);
 
-/// `overlap`, `delta_m`, `sample_size`, `max_time_s`, `seed`, `refinement`
+/// `overlap`, `delta_m`, `sample_size`, `max_time_s`, `partial_face_max_time_s`,
+/// `correction_good_enough_ratio`, `seed`, `refinement`
 /// (correction | icp | none), `correction_mode` (paper | full),
 /// `icp_max_correspondence_m`, `icp_max_iterations`.
 BrickPoseEstimatorParams estimatorParamsFrom(const ParamLookup& lookup);

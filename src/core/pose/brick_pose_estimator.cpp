@@ -56,6 +56,11 @@ void BrickPoseEstimatorParams::validate() const
 {
   super4pcs.validate();
   if (!(model_spacing_m > 0.0)) throw ConfigError("parameter 'model_spacing_m' must be > 0");
+  if (!(correction_good_enough_ratio > 0.0 && correction_good_enough_ratio <= 1.0))
+    throw ConfigError("parameter 'correction_good_enough_ratio' must be in (0, 1], got " +
+                      std::to_string(correction_good_enough_ratio));
+  if (!(partial_face_max_time_s > 0.0))
+    throw ConfigError("parameter 'partial_face_max_time_s' must be > 0, got " + std::to_string(partial_face_max_time_s));
   icp.validate();
 }
 
@@ -97,7 +102,9 @@ BrickRegistration BrickPoseEstimator::registerCandidate(const BrickCandidate& ca
   {
     params.refine_iterations = 0;
     params.fine_refine_iterations = 0;
+    params.good_enough_ratio = std::min(params.good_enough_ratio, params_.correction_good_enough_ratio);
   }
+  if (!candidate.complete) params.max_time_s = std::min(params.max_time_s, params_.partial_face_max_time_s);
   BrickRegistration registration;
   registration.result = registration::Super4PCS(params).align(source, target);
   registration.elapsed_ms = millisecondsSince(start);

@@ -44,6 +44,8 @@ BrickPoseEstimatorParams estimatorParamsFrom(const ParamLookup& lookup)
   read.number("delta_m", params.super4pcs.delta_m);
   read.integer("sample_size", params.super4pcs.sample_size);
   read.number("max_time_s", params.super4pcs.max_time_s);
+  read.number("partial_face_max_time_s", params.partial_face_max_time_s);
+  read.number("correction_good_enough_ratio", params.correction_good_enough_ratio);
   if (const auto seed = read.text("seed"))
   {
     const long long value = parseInteger("seed", *seed);
