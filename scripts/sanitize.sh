@@ -20,8 +20,9 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
 
 start_s=$(date +%s)
 "$root/scripts/configure_sanitizer_build.sh" "$build_dir" || exit 1
-# Unit tests and fuzz targets: the fuzzers run below on the same build.
-cmake --build "$build_dir" -j"$jobs" --target all fuzz_targets || { echo "sanitize: build failed" >&2; exit 1; }
+# Unit tests and fuzz targets (the fuzzers run below on the same build); the
+# benchmarks and tools are left out.
+cmake --build "$build_dir" -j"$jobs" --target core_tests fuzz_targets || { echo "sanitize: build failed" >&2; exit 1; }
 build_s=$(( $(date +%s) - start_s ))
 
 (cd "$build_dir" && ctest --output-on-failure -j"$jobs" ${CTEST_ARGS:-}) 2>&1 | tee "$log"
