@@ -2,6 +2,7 @@
 // Least-squares rigid transform between corresponding points (Kabsch /
 // Umeyama without scale), used for 4-point candidates and for refinement.
 
+#include <optional>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -19,5 +20,13 @@ struct RigidFit
 
 /// Best proper rotation and translation with target[i] ~ T * source[i].
 RigidFit fitRigid(const std::vector<Eigen::Vector3d>& source, const std::vector<Eigen::Vector3d>& target);
+
+/// The rigid step solving the linearised ICP normal equations lhs x = rhs,
+/// x = (dt, dw): a point p moves by dt + dw x (p - centre). A tiny damping
+/// keeps directions no residual constrains (e.g. the in-plane motion of a
+/// face without edge pairs) still instead of letting round-off move them.
+/// Nothing when the solution is not finite.
+std::optional<Eigen::Isometry3d> solveRigidStep(Eigen::Matrix<double, 6, 6> lhs,
+                                                const Eigen::Matrix<double, 6, 1>& rhs, const Eigen::Vector3d& centre);
 }  // namespace registration
 }  // namespace brick_pose

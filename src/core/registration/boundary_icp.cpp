@@ -6,10 +6,10 @@
 #include <limits>
 #include <optional>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include "brick_pose/registration/point_grid.h"
+#include "brick_pose/registration/rigid_fit.h"
 
 namespace brick_pose
 {
@@ -138,24 +138,11 @@ void addBoundaryPairs(const SurfaceBoundary& source_boundary, const PointGrid& b
 }
 
 /// The rigid step of the solved normal equations, or nothing when singular.
-std::optional<Eigen::Isometry3d> solveStep(NormalEquations& equations, const Eigen::Vector3d& centre)
+std::optional<Eigen::Isometry3d> solveStep(const NormalEquations& equations, const Eigen::Vector3d& centre)
 {
   if (equations.rows < 3)
     return std::nullopt;
-  // Directions no residual constrains (e.g. the in-plane motion of a face
-  // with no boundary pairs) stay still instead of drifting with round-off.
-  equations.lhs.diagonal().array() += 1e-9 * (equations.lhs.trace() + 1.0);
-  const Twist x = equations.lhs.ldlt().solve(equations.rhs);
-  if (!x.allFinite())
-    return std::nullopt;
-  const Eigen::Vector3d dw = x.tail<3>();
-  const double angle_rad = dw.norm();
-  const Eigen::Matrix3d rotation =
-      angle_rad > 0.0 ? Eigen::AngleAxisd(angle_rad, dw / angle_rad).toRotationMatrix() : Eigen::Matrix3d::Identity();
-  Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
-  step.linear() = rotation;
-  step.translation() = centre + x.head<3>() - rotation * centre;
-  return step;
+  return solveRigidStep(equations.lhs, equations.rhs, centre);
 }
 
 /// The normal at each source boundary point, for the flying-pixel check of

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include <Eigen/Cholesky>
 #include <Eigen/SVD>
 
 namespace brick_pose
@@ -48,6 +49,23 @@ RigidFit fitRigid(const std::vector<Eigen::Vector3d>& source, const std::vector<
   fit.rms_m = std::sqrt(sum_sq / static_cast<double>(n));
   fit.valid = true;
   return fit;
+}
+
+std::optional<Eigen::Isometry3d> solveRigidStep(Eigen::Matrix<double, 6, 6> lhs,
+                                                const Eigen::Matrix<double, 6, 1>& rhs, const Eigen::Vector3d& centre)
+{
+  lhs.diagonal().array() += 1e-9 * (lhs.trace() + 1.0);
+  const Eigen::Matrix<double, 6, 1> x = lhs.ldlt().solve(rhs);
+  if (!x.allFinite())
+    return std::nullopt;
+  const Eigen::Vector3d dw = x.tail<3>();
+  const double angle_rad = dw.norm();
+  const Eigen::Matrix3d rotation =
+      angle_rad > 0.0 ? Eigen::AngleAxisd(angle_rad, dw / angle_rad).toRotationMatrix() : Eigen::Matrix3d::Identity();
+  Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+  step.linear() = rotation;
+  step.translation() = centre + x.head<3>() - rotation * centre;
+  return step;
 }
 }  // namespace registration
 }  // namespace brick_pose

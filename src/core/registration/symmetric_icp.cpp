@@ -6,7 +6,6 @@
 #include <optional>
 #include <utility>
 
-#include <Eigen/Cholesky>
 
 #include "brick_pose/registration/point_grid.h"
 #include "brick_pose/registration/rigid_fit.h"
@@ -189,21 +188,9 @@ std::optional<Eigen::Isometry3d> hybridStep(const std::vector<Eigen::Vector3d>& 
       rhs += jacobian.transpose() * offset;
     }
   }
-  // A face with no overhanging edge leaves the in-plane motion free: the small
-  // damping keeps it still instead of letting round-off move it.
-  normal_matrix.diagonal().array() += 1e-9 * (normal_matrix.trace() + 1.0);
-  const Twist x = normal_matrix.ldlt().solve(rhs);
-  if (!x.allFinite())
-    return std::nullopt;
-
-  const Eigen::Vector3d dw = x.tail<3>();
-  const double angle = dw.norm();
-  const Eigen::Matrix3d rotation =
-      angle > 0.0 ? Eigen::AngleAxisd(angle, dw / angle).toRotationMatrix() : Eigen::Matrix3d::Identity();
-  Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
-  step.linear() = rotation;
-  step.translation() = centre + x.head<3>() - rotation * centre;
-  return step;
+  // A face with no overhanging edge leaves the in-plane motion free; the
+  // step's damping keeps it still.
+  return solveRigidStep(normal_matrix, rhs, centre);
 }
 }  // namespace
 
