@@ -26,6 +26,19 @@ struct RayFactors
       y_per_row[v] = static_cast<float>((v - camera.cy_px) / camera.fy_px);
   }
 };
+
+/// An organised cloud of width x height points (to be filled), in the
+/// frame's coordinate frame, for a reduced copy of the frame.
+pcl::PointCloud<pcl::PointXYZ>::Ptr reducedOrganizedCloud(const RgbdFrame& frame, int width, int height)
+{
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+  cloud->resize(static_cast<std::size_t>(width) * height);
+  cloud->width = static_cast<std::uint32_t>(width);
+  cloud->height = static_cast<std::uint32_t>(height);
+  cloud->is_dense = false;
+  cloud->header.frame_id = frame.frame_id;
+  return cloud;
+}
 }  // namespace
 
 void fillOrganizedCloud(const RgbdFrame& frame, pcl::PointCloud<pcl::PointXYZRGB>& cloud)
@@ -113,12 +126,7 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr makeStridedCloud(const RgbdFrame& frame, int
   const RayFactors factors(frame.camera, width, frame.height_px());
   const float nan = std::numeric_limits<float>::quiet_NaN();
 
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  cloud->resize(static_cast<std::size_t>(out_width) * out_height);
-  cloud->width = static_cast<std::uint32_t>(out_width);
-  cloud->height = static_cast<std::uint32_t>(out_height);
-  cloud->is_dense = false;
-  cloud->header.frame_id = frame.frame_id;
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud = reducedOrganizedCloud(frame, out_width, out_height);
   source_pixels.resize(cloud->size());
 
   std::size_t i = 0;
@@ -155,12 +163,7 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr makeBlockMedianCloud(const RgbdFrame& frame,
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const std::size_t min_valid = static_cast<std::size_t>(std::max(1, block * block / 4));
 
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  cloud->resize(static_cast<std::size_t>(out_width) * out_height);
-  cloud->width = static_cast<std::uint32_t>(out_width);
-  cloud->height = static_cast<std::uint32_t>(out_height);
-  cloud->is_dense = false;
-  cloud->header.frame_id = frame.frame_id;
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud = reducedOrganizedCloud(frame, out_width, out_height);
   source_pixels.resize(cloud->size());
 
   std::vector<float> depths;
