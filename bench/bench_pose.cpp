@@ -433,10 +433,9 @@ private:
 
   /// The pipeline on one frame, from the raw buffers, as the node runs it:
   /// frame build, front end, registration and default refinement of every
-  /// candidate. Returns the registrations (nullopt where Super4PCS failed).
-  std::vector<std::optional<BrickRegistration>> runTimedPipeline(const sim::SyntheticFrame& synthetic,
-                                                                 FrontEndResult& front_end_result,
-                                                                 BenchResults& results) const;
+  /// candidate; records its latency into `results`.
+  void runTimedPipeline(const sim::SyntheticFrame& synthetic, FrontEndResult& front_end_result,
+                        BenchResults& results) const;
 
   void evaluateCandidate(const BrickCandidate& candidate, const std::optional<BrickRegistration>& registration,
                          const sim::BrickTruth& truth, BrickRecord& record) const;
@@ -462,9 +461,8 @@ std::optional<BrickRegistration> tryRegister(const BrickPoseEstimator& estimator
   }
 }
 
-std::vector<std::optional<BrickRegistration>> PoseBench::runTimedPipeline(const sim::SyntheticFrame& synthetic,
-                                                                          FrontEndResult& front_end_result,
-                                                                          BenchResults& results) const
+void PoseBench::runTimedPipeline(const sim::SyntheticFrame& synthetic, FrontEndResult& front_end_result,
+                                 BenchResults& results) const
 {
   FrameHeader header;
   header.frame_id = "camera_color_optical_frame";
@@ -473,14 +471,13 @@ std::vector<std::optional<BrickRegistration>> PoseBench::runTimedPipeline(const 
       makeRgbdFrame(imageViewOf(synthetic.rgb, "rgb8"), imageViewOf(synthetic.depth_mm, "16UC1"), camera_, header);
   front_end_result = front_end_.process(frame);
   const double front_end_ms = millisecondsSince(start);
-  std::vector<std::optional<BrickRegistration>> registrations;
   for (const BrickCandidate& candidate : front_end_result.candidates)
   {
-    registrations.push_back(tryRegister(defaultEstimator(), candidate));
-    if (!registrations.back()) continue;
+    const std::optional<BrickRegistration> registration = tryRegister(defaultEstimator(), candidate);
+    if (!registration) continue;
     try
     {
-      defaultEstimator().refine(candidate, *registrations.back());
+      defaultEstimator().refine(candidate, *registration);
     }
     catch (const InputError&)
     {
@@ -491,7 +488,6 @@ std::vector<std::optional<BrickRegistration>> PoseBench::runTimedPipeline(const 
   results.latency_ms.push_back(total_ms);
   results.latency_frontend_ms.push_back(front_end_ms);
   results.latency_registration_ms.push_back(total_ms - front_end_ms);
-  return registrations;
 }
 
 void PoseBench::evaluateCandidate(const BrickCandidate& candidate,
