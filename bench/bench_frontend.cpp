@@ -24,8 +24,9 @@
 #include <string>
 #include <vector>
 
+#include "brick_pose/common/statistics.h"
 #include "brick_pose/frame/frame_builder.h"
-#include "brick_pose/roi/front_end.h"
+#include "brick_pose/pipeline/front_end.h"
 #include "brick_pose/sim/scene_generator.h"
 #include "brick_pose/sim/synthetic_rig.h"
 
@@ -58,22 +59,6 @@ Options parseOptions(int argc, char** argv)
     }
   }
   return options;
-}
-
-double percentile(std::vector<double> values, double fraction)
-{
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const std::size_t index = std::min(values.size() - 1, static_cast<std::size_t>(fraction * (values.size() - 1) + 0.5));
-  return values[index];
-}
-
-double mean(const std::vector<double>& values)
-{
-  if (values.empty()) return 0.0;
-  double sum = 0.0;
-  for (const double v : values) sum += v;
-  return sum / values.size();
 }
 
 /// Accumulated results of one segmentation mode.

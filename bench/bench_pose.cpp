@@ -40,11 +40,12 @@
 #include <opencv2/imgproc.hpp>
 #include <pcl/io/png_io.h>
 
+#include "brick_pose/common/statistics.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/frame/frame_builder.h"
 #include "brick_pose/pose/brick_pose_estimator.h"
 #include "brick_pose/registration/brick_symmetry.h"
-#include "brick_pose/roi/front_end.h"
+#include "brick_pose/pipeline/front_end.h"
 #include "brick_pose/sim/scene_generator.h"
 #include "brick_pose/sim/synthetic_rig.h"
 
@@ -101,28 +102,6 @@ Options parseOptions(int argc, char** argv)
     else usage(2);
   }
   return options;
-}
-
-// ---------------------------------------------------------------------------
-// Statistics
-// ---------------------------------------------------------------------------
-/// Linear-interpolated percentile, fraction in [0, 1]; NaN for no values.
-double percentile(std::vector<double> values, double fraction)
-{
-  if (values.empty()) return std::nan("");
-  std::sort(values.begin(), values.end());
-  const double position = fraction * static_cast<double>(values.size() - 1);
-  const std::size_t below = static_cast<std::size_t>(position);
-  const std::size_t above = std::min(values.size() - 1, below + 1);
-  return values[below] + (position - static_cast<double>(below)) * (values[above] - values[below]);
-}
-
-double mean(const std::vector<double>& values)
-{
-  if (values.empty()) return std::nan("");
-  double sum = 0.0;
-  for (const double value : values) sum += value;
-  return sum / static_cast<double>(values.size());
 }
 
 double millisecondsSince(std::chrono::steady_clock::time_point start)

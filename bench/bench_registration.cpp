@@ -43,12 +43,13 @@
 #include <string>
 #include <vector>
 
+#include "brick_pose/common/statistics.h"
 #include "brick_pose/camera/pinhole_camera.h"
 #include "brick_pose/catalogue/brick_catalogue.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/registration/brick_symmetry.h"
 #include "brick_pose/registration/model_cloud.h"
-#include "brick_pose/registration/pcl_baselines.h"
+#include "brick_pose/baselines/pcl_baselines.h"
 #include "brick_pose/registration/super4pcs.h"
 #include "brick_pose/registration/uniform_sampling.h"
 #include "brick_pose/sim/scene_generator.h"
@@ -220,15 +221,6 @@ private:
   std::uint64_t next_seed_;
 };
 
-/// CPU time of the calling thread: unlike wall time it does not grow when
-/// other processes share the cores.
-double threadCpuSeconds()
-{
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return now.tv_sec + 1e-9 * now.tv_nsec;
-}
-
 struct Outcome
 {
   double time_ms = 0.0;
@@ -249,17 +241,6 @@ struct MethodStats
   std::string json_key;
   std::vector<Outcome> outcomes;
 };
-
-double quantile(std::vector<double> values, double q)
-{
-  if (values.empty())
-    return std::nan("");
-  std::sort(values.begin(), values.end());
-  const double position = q * (values.size() - 1);
-  const std::size_t low = static_cast<std::size_t>(std::floor(position));
-  const std::size_t high = std::min(values.size() - 1, low + 1);
-  return values[low] + (position - low) * (values[high] - values[low]);
-}
 
 Outcome judge(const RegistrationResult& result, const Eigen::Isometry3d& truth)
 {
@@ -290,9 +271,9 @@ Summary summarise(const MethodStats& stats)
     translations.push_back(o.translation_mm);
     successes += o.success ? 1 : 0;
   }
-  return {quantile(times, 0.5), quantile(times, 0.95), quantile(cpu_times, 0.5), quantile(cpu_times, 0.95),
+  return {percentile(times, 0.5), percentile(times, 0.95), percentile(cpu_times, 0.5), percentile(cpu_times, 0.95),
           stats.outcomes.empty() ? 0.0 : static_cast<double>(successes) / stats.outcomes.size(),
-          quantile(rotations, 0.5), quantile(translations, 0.5)};
+          percentile(rotations, 0.5), percentile(translations, 0.5)};
 }
 /// One configuration of a PCL 4PCS baseline in the sweep.
 struct SweepSetting
@@ -396,7 +377,7 @@ std::pair<double, double> phaseQuantiles(const MethodStats& stats, double Outcom
   std::vector<double> values;
   for (const Outcome& o : stats.outcomes)
     values.push_back(o.*phase_ms);
-  return {quantile(values, 0.5), quantile(values, 0.95)};
+  return {percentile(values, 0.5), percentile(values, 0.95)};
 }
 
 /// Where Super4PCS spends its CPU time, overall and by brick type.
@@ -462,7 +443,7 @@ int main(int argc, char** argv)
       std::cerr << "face " << frame << " " << sample.type.name << " at " << sample.distance_m << " m, "
                 << sample.segment.size() << " points, brick-frame x [" << 1e3 * lower.x() << ", " << 1e3 * upper.x()
                 << "] y [" << 1e3 * lower.y() << ", " << 1e3 * upper.y() << "] z [" << 1e3 * lower.z() << ", "
-                << 1e3 * upper.z() << "] x1% " << 1e3 * quantile(xs, 0.01) << " x99% " << 1e3 * quantile(xs, 0.99)
+                << 1e3 * upper.z() << "] x1% " << 1e3 * percentile(xs, 0.01) << " x99% " << 1e3 * percentile(xs, 0.99)
                 << "\n";
     }
     segment_sizes.push_back(static_cast<double>(sample.segment.size()));
@@ -484,8 +465,11 @@ int main(int argc, char** argv)
     pcl_params.max_time_s = options.pcl_time_s;
     // ICP from the identity: the model sits at the camera origin, the face
     // 0.5-2 m away; the correspondence radius has to reach that far.
-    PclIcpParams icp_params;
+    IcpParams icp_params;
     icp_params.max_correspondence_distance_m = 2.5;
+    icp_params.max_iterations = 50;
+    icp_params.transformation_epsilon_m2 = 1e-8;
+    icp_params.relative_fitness_epsilon = 0.0;  // PCL's fitness criterion off, as in earlier runs
 
     const std::vector<std::pair<MethodStats*, std::function<RegistrationResult()>>> runs{
         {&ours, [&] { return Super4PCS(params).align(model, sample.segment); }},
@@ -536,8 +520,8 @@ int main(int argc, char** argv)
   std::printf("%d faces (%d frames skipped: top face < %.0f%% visible or < %d points), segment size median %.0f "
               "points (min %.0f, max %.0f). Success: rotation < %.0f deg and translation < %.0f mm modulo the "
               "face symmetry.\n\n",
-              options.frames, skipped, 100.0 * options.min_visible_fraction, kMinSegmentPoints, quantile(segment_sizes, 0.5),
-              quantile(segment_sizes, 0.0), quantile(segment_sizes, 1.0), kSuccessRotationDeg,
+              options.frames, skipped, 100.0 * options.min_visible_fraction, kMinSegmentPoints, percentile(segment_sizes, 0.5),
+              percentile(segment_sizes, 0.0), percentile(segment_sizes, 1.0), kSuccessRotationDeg,
               1e3 * kSuccessTranslationM);
   std::printf("| method | median ms | p95 ms | median CPU ms | p95 CPU ms | success | median rot. err. (deg) | "
               "median transl. err. (mm) |\n");

@@ -18,7 +18,7 @@
 #include "brick_pose/catalogue/brick_catalogue.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/frame/frame_builder.h"
-#include "brick_pose/roi/front_end.h"
+#include "brick_pose/pipeline/front_end.h"
 #include "fuzz_support.h"
 
 namespace

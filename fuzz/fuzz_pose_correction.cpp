@@ -48,7 +48,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
   FuzzedDataProvider input(data, size);
 
-  PoseCorrectionParameters parameters;
+  PoseCorrectionParams parameters;
   parameters.mode = input.ConsumeBool() ? CorrectionMode::kFull : CorrectionMode::kPaper;
   // A brick of the catalogue, or one with any dimensions (no validate():
   // correctPose documents its own check of the length).

@@ -13,7 +13,7 @@ packages=(
   libpcl-conversions-dev libpcl-dev libopencv-dev libeigen3-dev
   python3-rostest python3-roslaunch librostest-dev rosbash
   librosbag-dev python3-rosbag ros-sensor-msgs ros-geometry-msgs
-  libvisualization-msgs-dev libstd-srvs-dev
+  libvisualization-msgs-dev libstd-srvs-dev libdiagnostic-updater-dev
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libgtest-dev
   clang-16 libclang-rt-16-dev  # scripts/fuzz.sh: libFuzzer (clang 14 rejects lambdas capturing structured bindings)

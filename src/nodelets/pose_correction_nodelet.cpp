@@ -30,7 +30,7 @@
 #include "brick_pose/PoseCorrectionConfig.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/pose/brick_selection.h"
-#include "brick_pose/pose/pipeline_config.h"
+#include "brick_pose/pipeline/pipeline_config.h"
 #include "brick_pose/ros/brick_markers.h"
 #include "brick_pose/ros/conversions.h"
 #include "brick_pose/ros/param_lookup.h"

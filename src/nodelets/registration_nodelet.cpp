@@ -12,7 +12,7 @@
 
 #include "brick_pose/RegistrationConfig.h"
 #include "brick_pose/common/errors.h"
-#include "brick_pose/pose/pipeline_config.h"
+#include "brick_pose/pipeline/pipeline_config.h"
 #include "brick_pose/ros/param_lookup.h"
 #include "brick_pose/ros/pipeline_messages.h"
 

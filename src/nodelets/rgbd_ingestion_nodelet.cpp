@@ -23,7 +23,7 @@
 #include "brick_pose/frame/stamp_order.h"
 #include "brick_pose/ros/conversions.h"
 #include "brick_pose/ros/pipeline_messages.h"
-#include "brick_pose/ros/synthetic_frame_messages.h"
+#include "brick_pose/ros/camera_topics.h"
 
 namespace brick_pose
 {

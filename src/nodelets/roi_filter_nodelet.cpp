@@ -13,7 +13,7 @@
 #include <ros/ros.h>
 
 #include "brick_pose/common/errors.h"
-#include "brick_pose/pose/pipeline_config.h"
+#include "brick_pose/pipeline/pipeline_config.h"
 #include "brick_pose/roi/candidate_overlay.h"
 #include "brick_pose/ros/conversions.h"
 #include "brick_pose/ros/param_lookup.h"

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "brick_pose/sim/scene.h"
+#include "brick_pose/geometry/cuboid.h"
 
 namespace brick_pose
 {
@@ -46,7 +46,7 @@ visualization_msgs::Marker outline(const BrickDetection& detection, int id, cons
   shape.length_m = detection.dimensions.x;
   shape.width_m = detection.dimensions.y;
   shape.height_m = detection.dimensions.z;
-  const auto corners = sim::cuboidCornersInBrick(shape);  // 0-3 top face, 4-7 the same corners below
+  const auto corners = cuboidCornersInBrick(shape);  // 0-3 top face, 4-7 the same corners below
   for (int k = 0; k < 4; ++k)
   {
     for (int layer : {0, 4})

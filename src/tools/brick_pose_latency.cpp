@@ -17,16 +17,11 @@
 
 #include "brick_pose/BrickDetectionArray.h"
 #include "brick_pose/GetBrickPose.h"
+#include "brick_pose/common/statistics.h"
 
 namespace
 {
-double percentile(std::vector<double> values, double fraction)
-{
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const std::size_t index = std::min(values.size() - 1, static_cast<std::size_t>(fraction * (values.size() - 1) + 0.5));
-  return values[index];
-}
+using brick_pose::percentile;
 
 struct Samples
 {

@@ -17,14 +17,14 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include "brick_pose/common/errors.h"
-#include "brick_pose/ros/synthetic_frame_messages.h"
+#include "brick_pose/sim_ros/synthetic_frame_messages.h"
 #include "brick_pose/sim/rig_config.h"
 
 namespace
 {
 using brick_pose::ConfigError;
 
-struct ToolOptions
+struct CommandLineParams
 {
   std::string output;
   int frames = 30;
@@ -49,9 +49,9 @@ void printUsage()
     std::printf("  --%-24s %s\n", name.c_str(), meaning.c_str());
 }
 
-ToolOptions parseArguments(int argc, char** argv)
+CommandLineParams parseArguments(int argc, char** argv)
 {
-  ToolOptions options;
+  CommandLineParams options;
   for (int i = 1; i < argc; ++i)
   {
     const std::string flag = argv[i];
@@ -87,7 +87,7 @@ ToolOptions parseArguments(int argc, char** argv)
   return options;
 }
 
-void writeFrame(rosbag::Bag& bag, const ToolOptions& options, const brick_pose::SyntheticFrameMessages& messages)
+void writeFrame(rosbag::Bag& bag, const CommandLineParams& options, const brick_pose::SyntheticFrameMessages& messages)
 {
   const ros::Time stamp = messages.color->header.stamp;
   const std::string& ns = options.camera_ns;
@@ -101,7 +101,7 @@ void writeFrame(rosbag::Bag& bag, const ToolOptions& options, const brick_pose::
   bag.write("/tf", stamp, tf);
 }
 
-int run(const ToolOptions& options)
+int run(const CommandLineParams& options)
 {
   const brick_pose::sim::RigConfig config = brick_pose::sim::rigConfigFrom([&](const std::string& name) {
     const auto found = options.rig_parameters.find(name);

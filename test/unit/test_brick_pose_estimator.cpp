@@ -5,9 +5,9 @@
 #include "brick_pose/common/errors.h"
 #include "brick_pose/frame/frame_builder.h"
 #include "brick_pose/pose/brick_pose_estimator.h"
-#include "brick_pose/pose/pipeline_config.h"
+#include "brick_pose/pipeline/pipeline_config.h"
 #include "brick_pose/registration/brick_symmetry.h"
-#include "brick_pose/roi/front_end.h"
+#include "brick_pose/pipeline/front_end.h"
 #include "brick_pose/sim/scene_generator.h"
 #include "brick_pose/sim/synthetic_rig.h"
 

@@ -7,7 +7,7 @@
 
 #include "brick_pose/cloud/cloud_processor.h"
 #include "brick_pose/common/errors.h"
-#include "brick_pose/roi/plane_fit.h"
+#include "brick_pose/geometry/plane_fit.h"
 
 namespace brick_pose
 {

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "brick_pose/common/errors.h"
-#include "brick_pose/roi/front_end.h"
+#include "brick_pose/pipeline/front_end.h"
 #include "synthetic_plate_scene.h"
 
 namespace brick_pose

@@ -19,7 +19,7 @@
 #include "brick_pose/common/errors.h"
 #include "brick_pose/correction/pose_correction.h"
 #include "brick_pose/frame/frame_builder.h"
-#include "brick_pose/roi/front_end.h"
+#include "brick_pose/pipeline/front_end.h"
 
 namespace brick_pose
 {
@@ -205,7 +205,7 @@ TEST(FuzzRegressions, CorrectionOfAnAbsurdlyFarPoseIsRefusedOrFinite)
   face.t2_m = Eigen::Vector3d(0.91376977060355324, 0.33506978041403035, -1.7228860294117647);
   face.centroid_m = Eigen::Vector3d(0.0, 2.9999999991784794, -1.5358524711473946);
   face.normal = Eigen::Vector3d(-0.20750505036965661, 0.0, 0.99999993498787965);
-  PoseCorrectionParameters parameters;
+  PoseCorrectionParams parameters;
   parameters.mode = CorrectionMode::kPaper;
   const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
   const BrickType& blue = catalogue.at("blue");
@@ -236,7 +236,7 @@ TEST(FuzzRegressions, RotationWithHugeEntriesIsNotRigid)
   face.t2_m = Eigen::Vector3d(-0.6, -0.6, 1.0);
   face.centroid_m = face.midpoint_m();
   face.normal = Eigen::Vector3d(1.0, 1.0, 1.0);
-  PoseCorrectionParameters parameters;
+  PoseCorrectionParams parameters;
   parameters.mode = CorrectionMode::kPaper;
   BrickType brick = BrickCatalogue::mbzirc2020().at("orange");
   brick.length_m = brick.width_m = huge;  // as decoded; correctPose checks only that the length is positive

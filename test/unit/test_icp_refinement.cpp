@@ -97,7 +97,7 @@ TEST(IcpRefinement, ImprovesAPoseOffByAFewDegreesAndMillimetres)
   {
     const pcl::PointCloud<pcl::PointXYZ> cloud = noisyFaceCloud(truth, brick, 4000, 1e-3, seed);
     // All 4000 points take part, so that the fitness bound below holds.
-    IcpParameters parameters;
+    IcpParams parameters;
     parameters.max_target_points = 4000;
     const IcpRefinement result = refinePoseWithIcp(initial, brick, cloud, parameters);
     ASSERT_TRUE(result.converged) << seed;
@@ -176,7 +176,7 @@ TEST(IcpRefinement, RejectsANonFinitePoseAndBadParameters)
   broken.translation().z() = std::numeric_limits<double>::infinity();
   EXPECT_THROW(refinePoseWithIcp(broken, brick, cloud), InputError);
 
-  IcpParameters parameters;
+  IcpParams parameters;
   parameters.max_correspondence_distance_m = 0.0;
   try
   {

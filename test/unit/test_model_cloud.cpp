@@ -32,7 +32,7 @@ Eigen::Matrix3d rotationAbout(const Eigen::Vector3d& axis, double angle_deg)
 TEST(BrickModelCloud, TopFaceSpansTheFaceWithUpwardNormals)
 {
   const BrickType brick = redBrick();
-  ModelCloudOptions options;
+  ModelCloudParams options;
   options.spacing_m = 0.01;
   const PointSet cloud = buildBrickModelCloud(brick, options);
   ASSERT_EQ(cloud.size(), 31u * 21u);  // 0.30 / 0.01 + 1 by 0.20 / 0.01 + 1
@@ -55,7 +55,7 @@ TEST(BrickModelCloud, TopFaceSpansTheFaceWithUpwardNormals)
 TEST(BrickModelCloud, SideFacesHangBelowTheTopWithOutwardNormals)
 {
   const BrickType brick = redBrick();
-  ModelCloudOptions options;
+  ModelCloudParams options;
   options.spacing_m = 0.02;
   options.sides = {BrickSide::kPlusX, BrickSide::kMinusY};
   const PointSet cloud = buildBrickModelCloud(brick, options);
@@ -83,7 +83,7 @@ TEST(BrickModelCloud, SideFacesHangBelowTheTopWithOutwardNormals)
 
 TEST(BrickModelCloud, RejectsBadSpacing)
 {
-  ModelCloudOptions options;
+  ModelCloudParams options;
   options.spacing_m = 0.0;
   EXPECT_THROW(buildBrickModelCloud(redBrick(), options), ConfigError);
 }

@@ -59,9 +59,9 @@ MeasuredFace exactFace(const Eigen::Isometry3d& pose)
   return face;
 }
 
-PoseCorrectionParameters withMode(CorrectionMode mode)
+PoseCorrectionParams withMode(CorrectionMode mode)
 {
-  PoseCorrectionParameters parameters;
+  PoseCorrectionParams parameters;
   parameters.mode = mode;
   return parameters;
 }
@@ -92,7 +92,7 @@ Eigen::Isometry3d poseWithYawAndOffsetError(const Eigen::Isometry3d& truth)
 
 TEST(PoseCorrection, FullIsTheDefaultMode)
 {
-  EXPECT_EQ(PoseCorrectionParameters().mode, CorrectionMode::kFull);
+  EXPECT_EQ(PoseCorrectionParams().mode, CorrectionMode::kFull);
   const Eigen::Isometry3d truth = truePose();
   const PoseCorrection result = correctPose(poseWithYawAndOffsetError(truth), redBrick(), exactFace(truth));
   EXPECT_EQ(result.mode, CorrectionMode::kFull);

@@ -7,7 +7,7 @@
 #include "brick_pose/common/errors.h"
 #include "brick_pose/registration/brick_symmetry.h"
 #include "brick_pose/registration/model_cloud.h"
-#include "brick_pose/registration/pcl_baselines.h"
+#include "brick_pose/baselines/pcl_baselines.h"
 
 namespace brick_pose
 {
@@ -17,7 +17,7 @@ namespace
 {
 PointSet threeFaceView()
 {
-  ModelCloudOptions options;
+  ModelCloudParams options;
   options.spacing_m = 0.015;
   options.sides = {BrickSide::kPlusX, BrickSide::kPlusY};
   return buildBrickModelCloud(BrickCatalogue::mbzirc2020().at("red"), options);
@@ -41,7 +41,7 @@ TEST(PclBaselines, IcpFromIdentityRefinesASmallOffset)
   truth.linear() = Eigen::AngleAxisd(0.06, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   truth.translation() = Eigen::Vector3d(0.01, -0.008, 0.005);
   const PointSet target = transformed(source, truth, 0.0005, 3);
-  const RegistrationResult result = alignPclIcp(source, target, PclIcpParams());
+  const RegistrationResult result = alignPclIcp(source, target, IcpParams());
   ASSERT_TRUE(result.success) << result.reason;
   const PoseError error = poseErrorModuloSymmetry(result.source_to_target, truth, ModelSymmetry::kNone);
   EXPECT_LT(error.rotation_deg, 0.5);
@@ -77,7 +77,7 @@ TEST(PclBaselines, RejectBadInputAndParameters)
   PointSet empty;
   EXPECT_THROW(alignPclFpcs(empty, good, PclFpcsParams()), InputError);
   EXPECT_THROW(alignPclKfpcs(good, empty, PclFpcsParams()), InputError);
-  EXPECT_THROW(alignPclIcp(good, empty, PclIcpParams()), InputError);
+  EXPECT_THROW(alignPclIcp(good, empty, IcpParams()), InputError);
   PclFpcsParams fpcs;
   fpcs.max_time_s = 0;
   EXPECT_THROW(alignPclFpcs(good, good, fpcs), ConfigError);
@@ -87,7 +87,7 @@ TEST(PclBaselines, RejectBadInputAndParameters)
   fpcs = PclFpcsParams();
   fpcs.score_threshold = std::nan("");
   EXPECT_THROW(alignPclKfpcs(good, good, fpcs), ConfigError);
-  PclIcpParams icp;
+  IcpParams icp;
   icp.max_iterations = 0;
   EXPECT_THROW(alignPclIcp(good, good, icp), ConfigError);
 }

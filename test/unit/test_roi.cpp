@@ -11,7 +11,7 @@
 #include "brick_pose/catalogue/brick_catalogue.h"
 #include "brick_pose/roi/least_area_quad.h"
 #include "brick_pose/roi/oriented_bounding_box.h"
-#include "brick_pose/roi/plane_fit.h"
+#include "brick_pose/geometry/plane_fit.h"
 #include "brick_pose/roi/plate_splitter.h"
 #include "brick_pose/roi/roi_filter.h"
 #include "brick_pose/segmentation/hsv_segmenter.h"

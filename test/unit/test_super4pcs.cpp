@@ -216,7 +216,7 @@ TEST(Super4PCS, RecoversNoisyThreeFaceCuboidView)
 {
   const BrickType brick = redBrick();
   const std::vector<BrickSide> sides{BrickSide::kPlusX, BrickSide::kPlusY};
-  ModelCloudOptions options;
+  ModelCloudParams options;
   options.sides = sides;
   const PointSet model = buildBrickModelCloud(brick, options);
   std::mt19937_64 rng(13);
@@ -240,7 +240,7 @@ TEST(Super4PCS, RecoversHalfOverlappingCuboidView)
   // as well as it does at the right pose: no score can tell those apart.)
   const BrickType brick = BrickCatalogue::mbzirc2020().at("green");
   const std::vector<BrickSide> sides{BrickSide::kPlusX, BrickSide::kPlusY};
-  ModelCloudOptions options;
+  ModelCloudParams options;
   options.sides = sides;
   const PointSet model = buildBrickModelCloud(brick, options);
   int kept_model_points = 0;
@@ -367,7 +367,7 @@ TEST(BoundaryIcp, SlidesALongFaceIntoPlace)
         pointsOnSurface(model.points, model.normals, target.points, start, 0.02, 0.15, 3.0, 0.002);
     const SurfaceBoundary target_boundary =
         findSurfaceBoundary(on_surface.points, on_surface.normals, neighbourhoodRadius(on_surface.points, 20, rng));
-    BoundaryIcpOptions options;
+    BoundaryIcpParams options;
     options.plane_radius_m = options.final_plane_radius_m = 0.03;
     options.boundary_radius_m = 0.15;
     options.final_boundary_radius_m = 0.025;

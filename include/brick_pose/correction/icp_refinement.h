@@ -14,7 +14,7 @@ namespace brick_pose
 {
 /// pcl::IterativeClosestPoint settings; the defaults suit registration errors
 /// of a few degrees and millimetres on a D415 face cloud.
-struct IcpParameters
+struct IcpParams
 {
   /// Pairs further apart than this are ignored; a few times the expected
   /// registration error, well below the face's size.
@@ -56,5 +56,5 @@ struct IcpRefinement
 /// parameters or a brick without a positive length and width.
 IcpRefinement refinePoseWithIcp(const Eigen::Isometry3d& initial_pose, const BrickType& brick,
                                 const pcl::PointCloud<pcl::PointXYZ>& segment_cloud,
-                                const IcpParameters& parameters = IcpParameters());
+                                const IcpParams& parameters = IcpParams());
 }  // namespace brick_pose

@@ -19,7 +19,7 @@
 namespace brick_pose
 {
 /// Limits beyond which the input is rejected as degenerate (InputError).
-struct PoseCorrectionParameters
+struct PoseCorrectionParams
 {
   CorrectionMode mode = CorrectionMode::kFull;
   /// T1 and T2 closer than this give no usable direction.
@@ -72,5 +72,5 @@ struct PoseCorrection
 /// perpendicular to the line of sight, T1->T2 along the normal, or a tilt
 /// beyond the limit; ConfigError for a brick without a positive length.
 PoseCorrection correctPose(const Eigen::Isometry3d& T_cam_brick, const BrickType& brick, const MeasuredFace& face,
-                           const PoseCorrectionParameters& parameters = PoseCorrectionParameters());
+                           const PoseCorrectionParams& parameters = PoseCorrectionParams());
 }  // namespace brick_pose

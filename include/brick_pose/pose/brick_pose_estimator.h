@@ -39,8 +39,8 @@ struct BrickPoseEstimatorParams
   /// serves the pickable test. The best pose found by then is kept.
   double partial_face_max_time_s = 0.03;
   RefinementMethod refinement = kDefaultRefinementMethod;
-  PoseCorrectionParameters correction;
-  IcpParameters icp;
+  PoseCorrectionParams correction;
+  IcpParams icp;
 
   /// Throws ConfigError naming the first unusable field.
   void validate() const;

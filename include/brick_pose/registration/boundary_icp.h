@@ -82,7 +82,7 @@ OrientedPoints pointsOnSurface(const std::vector<Eigen::Vector3d>& source,
 double neighbourhoodRadius(const std::vector<Eigen::Vector3d>& points, int neighbours, std::mt19937_64& rng,
                           int probes = 32);
 
-struct BoundaryIcpOptions
+struct BoundaryIcpParams
 {
   /// Source -> target point-to-plane pairs farther apart are dropped; the
   /// radius shrinks geometrically from the first to the second value over
@@ -112,6 +112,6 @@ Eigen::Isometry3d refineBoundaryIcp(const std::vector<Eigen::Vector3d>& source,
                                     const std::vector<Eigen::Vector3d>& source_normals,
                                     const SurfaceBoundary& source_boundary, const std::vector<Eigen::Vector3d>& target,
                                     const SurfaceBoundary& target_boundary, const Eigen::Isometry3d& start,
-                                    const BoundaryIcpOptions& options);
+                                    const BoundaryIcpParams& options);
 }  // namespace registration
 }  // namespace brick_pose

@@ -23,7 +23,7 @@ enum class BrickSide
   kMinusY
 };
 
-struct ModelCloudOptions
+struct ModelCloudParams
 {
   double spacing_m = 0.01;  ///< grid step on every face
   std::vector<BrickSide> sides;  ///< side faces to add to the top face
@@ -32,7 +32,7 @@ struct ModelCloudOptions
 /// Top face (z = 0, normals +z) plus the requested side faces (normals
 /// outward), each sampled on a grid that includes the face's edges. Throws
 /// ConfigError for an invalid brick type or spacing.
-PointSet buildBrickModelCloud(const BrickType& brick, const ModelCloudOptions& options = ModelCloudOptions());
+PointSet buildBrickModelCloud(const BrickType& brick, const ModelCloudParams& options = ModelCloudParams());
 
 /// The side faces a camera sees for a brick pose (faces whose outward normal
 /// points towards the camera centre). camera_from_brick maps brick points into

@@ -24,7 +24,7 @@ namespace brick_pose
 {
 namespace registration
 {
-struct SymmetricIcpOptions
+struct SymmetricIcpParams
 {
   /// Correspondences farther apart are dropped. The radius shrinks
   /// geometrically from radius_m to final_radius_m over the iterations: wide
@@ -71,6 +71,6 @@ struct SymmetricIcpOptions
 Eigen::Isometry3d refineSymmetricIcp(const std::vector<Eigen::Vector3d>& source,
                                      const std::vector<Eigen::Vector3d>& source_normals,
                                      const std::vector<Eigen::Vector3d>& target, const Eigen::Isometry3d& start,
-                                     const SymmetricIcpOptions& options);
+                                     const SymmetricIcpParams& options);
 }  // namespace registration
 }  // namespace brick_pose

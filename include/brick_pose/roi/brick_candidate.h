@@ -13,7 +13,7 @@
 
 #include "brick_pose/roi/least_area_quad.h"
 #include "brick_pose/roi/oriented_bounding_box.h"
-#include "brick_pose/roi/plane_fit.h"
+#include "brick_pose/geometry/plane_fit.h"
 
 namespace brick_pose
 {

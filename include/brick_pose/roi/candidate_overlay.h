@@ -5,7 +5,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "brick_pose/roi/front_end.h"
+#include "brick_pose/pipeline/front_end.h"
 
 namespace brick_pose
 {

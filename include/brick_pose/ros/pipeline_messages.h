@@ -11,7 +11,7 @@
 
 #include "brick_pose/frame/rgbd_frame.h"
 #include "brick_pose/pose/brick_pose_estimator.h"
-#include "brick_pose/roi/front_end.h"
+#include "brick_pose/pipeline/front_end.h"
 #include "brick_pose/ros/inprocess_message.h"
 
 namespace brick_pose

@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 
 #include "brick_pose/catalogue/brick_catalogue.h"
+#include "brick_pose/geometry/cuboid.h"
 
 namespace brick_pose
 {
@@ -57,12 +58,8 @@ enum class CuboidFace : unsigned char
   kMinusY = 6,
 };
 
-/// The four corners of the top face in the brick frame, counter-clockwise
-/// seen from +z: (+x,+y), (-x,+y), (-x,-y), (+x,-y).
-std::array<Eigen::Vector3d, 4> topFaceCornersInBrick(const BrickType& type);
-
-/// The eight corners of the body in the brick frame.
-std::array<Eigen::Vector3d, 8> cuboidCornersInBrick(const BrickType& type);
+using brick_pose::cuboidCornersInBrick;
+using brick_pose::topFaceCornersInBrick;
 
 /// Top-face corners expressed in the camera frame.
 std::array<Eigen::Vector3d, 4> topFaceCornersInCamera(const BrickTruth& truth);

@@ -52,7 +52,7 @@ Eigen::Isometry3d toIsometry(const Eigen::Matrix4f& transform)
 }
 }  // namespace
 
-void IcpParameters::validate() const
+void IcpParams::validate() const
 {
   if (!isPositiveFinite(max_correspondence_distance_m))
     throw ConfigError("icp: max_correspondence_distance_m must be positive");
@@ -80,7 +80,7 @@ Cloud::Ptr everyNth(const Cloud& cloud, int max_points)
 }
 
 IcpRefinement refinePoseWithIcp(const Eigen::Isometry3d& initial_pose, const BrickType& brick,
-                                const pcl::PointCloud<pcl::PointXYZ>& segment_cloud, const IcpParameters& parameters)
+                                const pcl::PointCloud<pcl::PointXYZ>& segment_cloud, const IcpParams& parameters)
 {
   parameters.validate();
   if (!isPositiveFinite(brick.length_m) || !isPositiveFinite(brick.width_m))

@@ -78,7 +78,7 @@ double smallSignedAngle(const Eigen::Vector3d& from, const Eigen::Vector3d& to, 
 
 /// Checks what both modes rely on and returns the unit face normal.
 Eigen::Vector3d validateFace(const MeasuredFace& face, const BrickType& brick,
-                             const PoseCorrectionParameters& parameters)
+                             const PoseCorrectionParams& parameters)
 {
   requireFinite(face.t1_m, "T1");
   requireFinite(face.t2_m, "T2");
@@ -128,7 +128,7 @@ Eigen::Vector3d validateFace(const MeasuredFace& face, const BrickType& brick,
 /// and then the shift in the outer frame; written as Pose x Rz x Trans(d'')
 /// the shift would instead be d'' = Rz^T R^T dt, the rotated brick frame.
 PoseCorrection correctLikePaper(const Eigen::Isometry3d& pose, const BrickType& brick, const MeasuredFace& face,
-                                const PoseCorrectionParameters& parameters)
+                                const PoseCorrectionParams& parameters)
 {
   const Eigen::Matrix3d& rotation = pose.linear();
   const Eigen::Vector3d pose_z = rotation.col(2);
@@ -158,7 +158,7 @@ PoseCorrection correctLikePaper(const Eigen::Isometry3d& pose, const BrickType& 
 /// point of the segment, while T1 and T2 are single depth samples. For exact
 /// data the midpoint lies on the plane and both agree.
 PoseCorrection correctAllSixDof(const Eigen::Isometry3d& pose, const MeasuredFace& face,
-                                const Eigen::Vector3d& normal, const PoseCorrectionParameters& parameters)
+                                const Eigen::Vector3d& normal, const PoseCorrectionParams& parameters)
 {
   const Eigen::Vector3d pose_z = pose.linear().col(2);
   PoseCorrection result;
@@ -195,7 +195,7 @@ double PoseCorrection::tiltDeg() const
 }
 
 PoseCorrection correctPose(const Eigen::Isometry3d& T_cam_brick, const BrickType& brick, const MeasuredFace& face,
-                           const PoseCorrectionParameters& parameters)
+                           const PoseCorrectionParams& parameters)
 {
   if (!(std::isfinite(brick.length_m) && brick.length_m > 0.0))
     throw ConfigError("pose correction: brick '" + brick.name + "' needs a positive length_m");

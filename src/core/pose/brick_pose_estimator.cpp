@@ -69,7 +69,7 @@ BrickPoseEstimator::BrickPoseEstimator(const BrickCatalogue& catalogue, const Br
 {
   params_.validate();
   if (catalogue_.empty()) throw ConfigError("brick pose estimator: the catalogue is empty");
-  registration::ModelCloudOptions options;
+  registration::ModelCloudParams options;
   options.spacing_m = params_.model_spacing_m;
   for (const BrickType& type : catalogue_.types())
     models_[type.name] = registration::buildBrickModelCloud(type, options);

@@ -281,7 +281,7 @@ Eigen::Isometry3d refineBoundaryIcp(const std::vector<Eigen::Vector3d>& source,
                                     const std::vector<Eigen::Vector3d>& source_normals,
                                     const SurfaceBoundary& source_boundary, const std::vector<Eigen::Vector3d>& target,
                                     const SurfaceBoundary& target_boundary, const Eigen::Isometry3d& start,
-                                    const BoundaryIcpOptions& options)
+                                    const BoundaryIcpParams& options)
 {
   if (source.empty() || target.empty() || source_normals.size() != source.size() || options.max_iterations <= 0)
     return start;

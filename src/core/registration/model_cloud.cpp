@@ -26,11 +26,11 @@ void addFaceGrid(const Eigen::Vector3d& origin, const Eigen::Vector3d& u, double
 }
 }  // namespace
 
-PointSet buildBrickModelCloud(const BrickType& brick, const ModelCloudOptions& options)
+PointSet buildBrickModelCloud(const BrickType& brick, const ModelCloudParams& options)
 {
   brick.validate();
   if (!(options.spacing_m > 0.0) || !std::isfinite(options.spacing_m))
-    throw ConfigError("ModelCloudOptions.spacing_m must be positive, got " + std::to_string(options.spacing_m));
+    throw ConfigError("ModelCloudParams.spacing_m must be positive, got " + std::to_string(options.spacing_m));
   const double half_l = 0.5 * brick.length_m;
   const double half_w = 0.5 * brick.width_m;
   const double h = brick.height_m;

@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include "brick_pose/common/errors.h"
+#include "brick_pose/common/statistics.h"
 #include "brick_pose/registration/boundary_icp.h"
 #include "brick_pose/registration/congruent_set_finder.h"
 #include "brick_pose/registration/coplanar_base.h"
@@ -56,14 +57,6 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start)
 {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-/// CPU time of the calling thread, for the per-phase profile in the result.
-double threadCpuSeconds()
-{
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
 void requireInRange(double value, double min, double max, const char* name)
@@ -270,7 +263,7 @@ Eigen::Isometry3d coarseIcp(const PointSet& refine_source, const std::vector<Eig
                             const Super4PCSParams& params, double remaining_s, std::mt19937_64& rng)
 {
   const double target_spacing_m = neighbourSpacing(refine_target, 0.5, rng);
-  SymmetricIcpOptions icp;
+  SymmetricIcpParams icp;
   icp.final_radius_m = std::max(1.5 * scales.lcp_radius_m, 1.5 * target_spacing_m);  // the LCP's resolution
   icp.radius_m = std::max(start_radius_m, icp.final_radius_m);
   icp.in_surface_tolerance_m = std::max(params.delta_m, target_spacing_m);
@@ -338,7 +331,7 @@ Eigen::Isometry3d boundaryIcp(const PointSet& source, const PointSet& target, co
       findBoundaries(source, target, plane_source, start_pose, boundary_start_radius_m, params, rng);
   if (!(input.target_spacing_m > 0.0) || !(input.source_spacing_m > 0.0))
     return start_pose;
-  BoundaryIcpOptions icp;
+  BoundaryIcpParams icp;
   // The coarse stage has brought the source onto the surface: the plane
   // pairs need no wider radius than the LCP's resolution.
   icp.final_plane_radius_m = std::max(1.5 * scales.lcp_radius_m, 1.5 * input.target_spacing_m);

@@ -60,7 +60,7 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v)
 // boundary pulls towards the solution. When two steps point the same way and
 // shrink by a ratio rho, the remaining distance is rho / (1 - rho) steps
 // (Besl & McKay's accelerated ICP uses the same observation).
-double extrapolationFactor(const Twist& previous, const Twist& current, const SymmetricIcpOptions& options)
+double extrapolationFactor(const Twist& previous, const Twist& current, const SymmetricIcpParams& options)
 {
   const double previous_norm = previous.norm();
   const double current_norm = current.norm();
@@ -197,7 +197,7 @@ std::optional<Eigen::Isometry3d> hybridStep(const std::vector<Eigen::Vector3d>& 
 Eigen::Isometry3d refineSymmetricIcp(const std::vector<Eigen::Vector3d>& source,
                                      const std::vector<Eigen::Vector3d>& source_normals,
                                      const std::vector<Eigen::Vector3d>& target, const Eigen::Isometry3d& start,
-                                     const SymmetricIcpOptions& options)
+                                     const SymmetricIcpParams& options)
 {
   const bool hybrid = !source_normals.empty() && source_normals.size() == source.size();
   const double start_radius_m = std::max(options.radius_m, options.final_radius_m);

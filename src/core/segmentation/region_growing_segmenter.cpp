@@ -13,7 +13,7 @@
 
 #include "brick_pose/common/errors.h"
 #include "brick_pose/frame/organized_cloud.h"
-#include "brick_pose/roi/plane_fit.h"
+#include "brick_pose/geometry/plane_fit.h"
 
 namespace brick_pose
 {

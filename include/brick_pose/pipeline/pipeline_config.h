@@ -6,7 +6,7 @@
 #include "brick_pose/catalogue/brick_catalogue.h"
 #include "brick_pose/common/param_parsing.h"
 #include "brick_pose/pose/brick_pose_estimator.h"
-#include "brick_pose/roi/front_end.h"
+#include "brick_pose/pipeline/front_end.h"
 
 namespace brick_pose
 {

@@ -1,4 +1,4 @@
-#include "brick_pose/ros/synthetic_frame_messages.h"
+#include "brick_pose/sim_ros/synthetic_frame_messages.h"
 
 #include <boost/make_shared.hpp>
 

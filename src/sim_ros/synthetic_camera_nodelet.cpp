@@ -24,7 +24,7 @@
 
 #include "brick_pose/common/errors.h"
 #include "brick_pose/ros/param_lookup.h"
-#include "brick_pose/ros/synthetic_frame_messages.h"
+#include "brick_pose/sim_ros/synthetic_frame_messages.h"
 #include "brick_pose/sim/rig_config.h"
 
 namespace brick_pose

@@ -12,19 +12,11 @@
 #include <sensor_msgs/Image.h>
 
 #include "brick_pose/BrickTruthArray.h"
+#include "brick_pose/ros/camera_topics.h"
 #include "brick_pose/sim/synthetic_rig.h"
 
 namespace brick_pose
 {
-/// Topic names relative to the camera namespace, as realsense2_camera uses them.
-struct CameraTopics
-{
-  static constexpr const char* kColorImage = "color/image_raw";
-  static constexpr const char* kColorInfo = "color/camera_info";
-  static constexpr const char* kDepthImage = "aligned_depth_to_color/image_raw";
-  static constexpr const char* kDepthInfo = "aligned_depth_to_color/camera_info";
-};
-
 struct SyntheticFrameMessages
 {
   sensor_msgs::ImagePtr color;  // rgb8

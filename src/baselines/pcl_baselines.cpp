@@ -1,4 +1,4 @@
-#include "brick_pose/registration/pcl_baselines.h"
+#include "brick_pose/baselines/pcl_baselines.h"
 
 #include <chrono>
 #include <cmath>
@@ -87,17 +87,6 @@ void PclFpcsParams::validate() const
     throw ConfigError("PclFpcsParams.kfpcs_lambda must be >= 0, got " + std::to_string(kfpcs_lambda));
 }
 
-void PclIcpParams::validate() const
-{
-  if (!(max_correspondence_distance_m > 0.0 && std::isfinite(max_correspondence_distance_m)))
-    throw ConfigError("PclIcpParams.max_correspondence_distance_m must be positive, got " +
-                      std::to_string(max_correspondence_distance_m));
-  if (max_iterations < 1)
-    throw ConfigError("PclIcpParams.max_iterations must be at least 1, got " + std::to_string(max_iterations));
-  if (!(transformation_epsilon >= 0.0))
-    throw ConfigError("PclIcpParams.transformation_epsilon must be >= 0");
-}
-
 RegistrationResult alignPclFpcs(const PointSet& source, const PointSet& target, const PclFpcsParams& params)
 {
   const Clock::time_point start = Clock::now();
@@ -119,7 +108,7 @@ RegistrationResult alignPclKfpcs(const PointSet& source, const PointSet& target,
   return runFpcs(aligner, source, target, params, start);
 }
 
-RegistrationResult alignPclIcp(const PointSet& source, const PointSet& target, const PclIcpParams& params)
+RegistrationResult alignPclIcp(const PointSet& source, const PointSet& target, const IcpParams& params)
 {
   const Clock::time_point start = Clock::now();
   params.validate();
@@ -130,7 +119,8 @@ RegistrationResult alignPclIcp(const PointSet& source, const PointSet& target, c
   icp.setInputTarget(Cloud::ConstPtr(new Cloud(toPclXyz(target))));
   icp.setMaxCorrespondenceDistance(params.max_correspondence_distance_m);
   icp.setMaximumIterations(params.max_iterations);
-  icp.setTransformationEpsilon(params.transformation_epsilon);
+  icp.setTransformationEpsilon(params.transformation_epsilon_m2);
+  icp.setEuclideanFitnessEpsilon(params.relative_fitness_epsilon);
   Cloud aligned;
   icp.align(aligned);
 

@@ -1,4 +1,4 @@
-#include "brick_pose/pose/pipeline_config.h"
+#include "brick_pose/pipeline/pipeline_config.h"
 
 #include "brick_pose/common/errors.h"
 #include "brick_pose/correction/correction_mode.h"

@@ -7,6 +7,7 @@
 // PCL's 4PCS implementations seed std::rand from the clock, so unlike our
 // Super4PCS their results are not reproducible run to run.
 
+#include "brick_pose/correction/icp_refinement.h"
 #include "brick_pose/registration/point_set.h"
 #include "brick_pose/registration/registration_result.h"
 
@@ -35,21 +36,12 @@ struct PclFpcsParams
   void validate() const;
 };
 
-struct PclIcpParams
-{
-  double max_correspondence_distance_m = 0.05;
-  int max_iterations = 50;
-  double transformation_epsilon = 1e-8;
-
-  void validate() const;
-};
-
 /// lcp_score in the results is the fraction of source points within delta_m
 /// (ICP: within max_correspondence_distance_m / 10) of a target point after
 /// alignment, for comparison with Super4PCS; bases_tried and
 /// candidates_verified are not reported by PCL and stay 0.
 RegistrationResult alignPclFpcs(const PointSet& source, const PointSet& target, const PclFpcsParams& params);
 RegistrationResult alignPclKfpcs(const PointSet& source, const PointSet& target, const PclFpcsParams& params);
-RegistrationResult alignPclIcp(const PointSet& source, const PointSet& target, const PclIcpParams& params);
+RegistrationResult alignPclIcp(const PointSet& source, const PointSet& target, const IcpParams& params);
 }  // namespace registration
 }  // namespace brick_pose

@@ -1,4 +1,4 @@
-#include "brick_pose/roi/plane_fit.h"
+#include "brick_pose/geometry/plane_fit.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "brick_pose/roi/front_end.h"
+#include "brick_pose/pipeline/front_end.h"
 
 #include <algorithm>
 #include <chrono>
