@@ -23,7 +23,7 @@ log="$root/ws/build.log"
 echo "brick_pose: building (Release, -j$jobs; log in ws/build.log)"
 start=$(date +%s)
 if ! catkin_make -j"$jobs" -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \
-  -DCATKIN_ENABLE_TESTING=ON "$@" >"$log" 2>&1; then
+  -DCATKIN_ENABLE_TESTING=ON -DBRICK_POSE_BUILD_BENCHMARKS=ON "$@" >"$log" 2>&1; then
   grep -n -i -E "error|exception" "$log" | head -40
   tail -20 "$log"
   echo "brick_pose: build FAILED (full log: ws/build.log)" >&2
