@@ -13,7 +13,8 @@ const std::vector<std::pair<std::string, std::string>>& rigParameterHelp()
 {
   static const std::vector<std::pair<std::string, std::string>> help = {
       {"catalogue_path", "brick catalogue YAML (default: built-in MBZIRC 2020 bricks)"},
-      {"scene", "single | organised_pile | unorganised_pile (default single)"},
+      {"scene", "single | organised_pile | unorganised_pile | touching_rows | pallet_layer | pallet_stack | "
+                "table_boxes (default single); the kind sets its own default distances, view angles and counts"},
       {"types", "comma-separated brick types to draw from (default: all)"},
       {"seed", "scene seed; the same seed gives the same scene and noise (default 1)"},
       {"min_distance_m", "nearest camera-to-pile distance (default 0.6)"},
@@ -22,6 +23,19 @@ const std::vector<std::pair<std::string, std::string>>& rigParameterHelp()
       {"max_elevation_deg", "highest view angle, 90 = straight down (default 88)"},
       {"max_tilt_deg", "largest brick tilt (default 8)"},
       {"max_pile_bricks", "bricks in an unorganised pile: 2..this (default 6)"},
+      {"max_rows", "rows of an organised pile or of touching rows: 1..this (default 3; touching_rows 4)"},
+      {"max_layers", "layers of an organised pile, touching rows or a pallet stack (default 2; touching_rows 1, "
+                     "pallets 3)"},
+      {"max_gap_m", "touching rows and pallets: widest seam between neighbours (default 0.003)"},
+      {"zero_gap_probability", "touching rows and pallets: chance that a seam is closed (default 0.5)"},
+      {"max_row_length_m", "touching rows: bricks end to end up to this length (default 2.0)"},
+      {"pallet_length_m", "pallet footprint length (default 1.2)"},
+      {"pallet_width_m", "pallet footprint width (default 0.8)"},
+      {"missing_box_probability", "pallets: chance that a box of a layer is missing (default 0.08)"},
+      {"layer_offset_m", "pallet stacks: largest shift of an upper layer (default 0.05)"},
+      {"max_table_boxes", "table boxes: 1..this boxes (default 4)"},
+      {"upright_probability", "table boxes: chance that a box stands on a side or an end (default 0.7)"},
+      {"stack_probability", "table boxes: chance that a box is put on an earlier one (default 0.3)"},
       {"lighting", "normal | sunlight | low_light (default normal)"},
       {"width", "image width in pixels (default 1280)"},
       {"height", "image height in pixels (default 720)"},
@@ -65,7 +79,8 @@ void readSensor(const ParamReader& read, SensorModel& sensor)
 
 void readScene(const ParamReader& read, SceneParams& scene)
 {
-  if (const auto kind = read.text("scene")) scene.kind = sceneKindFromString(*kind);
+  // The kind first: its defaults are what the other parameters override.
+  if (const auto kind = read.text("scene")) scene = SceneParams::defaultsFor(sceneKindFromString(*kind));
   if (const auto types = read.text("types")) scene.types = splitList(*types);
   read.number("min_distance_m", scene.min_distance_m);
   read.number("max_distance_m", scene.max_distance_m);
@@ -73,6 +88,18 @@ void readScene(const ParamReader& read, SceneParams& scene)
   read.number("max_elevation_deg", scene.max_elevation_deg);
   read.number("max_tilt_deg", scene.max_tilt_deg);
   read.integer("max_pile_bricks", scene.max_pile_bricks);
+  read.integer("max_rows", scene.max_rows);
+  read.integer("max_layers", scene.max_layers);
+  read.number("max_gap_m", scene.max_gap_m);
+  read.number("zero_gap_probability", scene.zero_gap_probability);
+  read.number("max_row_length_m", scene.max_row_length_m);
+  read.number("pallet_length_m", scene.pallet_length_m);
+  read.number("pallet_width_m", scene.pallet_width_m);
+  read.number("missing_box_probability", scene.missing_box_probability);
+  read.number("layer_offset_m", scene.layer_offset_m);
+  read.integer("max_table_boxes", scene.max_table_boxes);
+  read.number("upright_probability", scene.upright_probability);
+  read.number("stack_probability", scene.stack_probability);
 }
 }  // namespace
 

@@ -6,6 +6,8 @@
 
 #include "brick_pose/sim/fast_random.h"
 #include "brick_pose/sim/ray_caster.h"
+#include "brick_pose/sim/top_face_visibility.h"
+#include "brick_pose/sim/touching.h"
 
 namespace brick_pose
 {
@@ -326,10 +328,20 @@ private:
         if (label > 0 && frame.face_labels.at<unsigned char>(v, u) == static_cast<unsigned char>(CuboidFace::kTop))
           ++truths[label - 1].visible_top_pixels;
       }
-    for (BrickTruth& truth : truths)
+    const std::vector<int> touching = touchingNeighbourCounts(scene_);
+    for (int i = 0; i < static_cast<int>(truths.size()); ++i)
     {
+      BrickTruth& truth = truths[i];
       const double area_px = unoccludedTopFaceArea(truth);
       truth.visible_fraction = area_px > 0.0 ? std::min(1.0, truth.visible_top_pixels / area_px) : 0.0;
+      const TopFaceVisibility visibility = topFaceVisibility(scene_, caster_, camera_, i);
+      truth.top_face_complete = visibility.complete();
+      truth.top_face_cut_by_border = visibility.cut_by_border;
+      truth.top_face_occluded = visibility.occluded;
+      truth.top_edge_visible_fraction = visibility.edge_visible_fraction;
+      truth.top_face_tilt_deg = visibility.tilt_deg;
+      truth.up_face = visibility.up_face;
+      truth.touching_neighbours = touching[i];
     }
     return truths;
   }
