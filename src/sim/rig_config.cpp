@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "brick_pose/common/errors.h"
+#include "brick_pose/sim/d415_modes.h"
 
 namespace brick_pose
 {
@@ -36,7 +37,11 @@ const std::vector<std::pair<std::string, std::string>>& rigParameterHelp()
       {"max_table_boxes", "table boxes: 1..this boxes (default 4)"},
       {"upright_probability", "table boxes: chance that a box stands on a side or an end (default 0.7)"},
       {"stack_probability", "table boxes: chance that a box is put on an earlier one (default 0.3)"},
+      {"edge_radius_m", "radius of the rounded top edges: a crease in depth, a dark line in colour at seams "
+                        "(default 0; the box kinds 0.004)"},
       {"lighting", "normal | sunlight | low_light (default normal)"},
+      {"resolution", "D415 colour mode with its intrinsics: 1280x720 | 848x480 | 640x480 | 640x360 | 1920x1080 "
+                     "(default 1280x720); width, height, fx, fy, cx, cy override it"},
       {"width", "image width in pixels (default 1280)"},
       {"height", "image height in pixels (default 720)"},
       {"fx", "focal length x in pixels (default 920)"},
@@ -48,6 +53,13 @@ const std::vector<std::pair<std::string, std::string>>& rigParameterHelp()
       {"dropout_probability", "random depth holes per pixel (default 0.002)"},
       {"flying_pixel_probability", "chance of a flying pixel on a depth edge (default 0.5)"},
       {"stereo_shadow", "holes where the second imager is occluded (default true)"},
+      {"depth_model", "ideal | d4xx: d4xx sets the four below to a D4xx's values (7, 3, 1/32, 2 and 1) "
+                      "(default ideal: all off)"},
+      {"stereo_window_px", "stereo matching window (odd; 1 = off): smooths depth over seams and narrow gaps"},
+      {"edge_fattening_px", "pixels the nearer surface grows into the farther at a depth step (0 = off)"},
+      {"disparity_step_px", "disparity quantisation step in pixels, e.g. 0.03125 (0 = off)"},
+      {"depth_offset_u_px", "misregistration of the aligned depth against colour, x (pixels)"},
+      {"depth_offset_v_px", "misregistration of the aligned depth against colour, y (pixels)"},
   };
   return help;
 }
@@ -57,6 +69,7 @@ namespace
 
 void readCamera(const ParamReader& read, PinholeCamera& camera)
 {
+  if (const auto resolution = read.text("resolution")) camera = d415ColourMode(*resolution);
   read.integer("width", camera.width_px);
   read.integer("height", camera.height_px);
   read.number("fx", camera.fx_px);
@@ -68,12 +81,20 @@ void readCamera(const ParamReader& read, PinholeCamera& camera)
 
 void readSensor(const ParamReader& read, SensorModel& sensor)
 {
+  // The preset first: the other parameters override it.
+  if (const auto model = read.text("depth_model"))
+    sensor = depthModelFromString(*model) == DepthModel::kD4xx ? SensorModel::d4xx() : SensorModel();
   if (const auto lighting = read.text("lighting")) sensor.lighting = lightingFromString(*lighting);
   read.number("baseline_m", sensor.baseline_m);
   read.number("subpixel_px", sensor.subpixel_px);
   read.number("dropout_probability", sensor.dropout_probability);
   read.number("flying_pixel_probability", sensor.flying_pixel_probability);
   read.flag("stereo_shadow", sensor.stereo_shadow);
+  read.integer("stereo_window_px", sensor.stereo_window_px);
+  read.integer("edge_fattening_px", sensor.edge_fattening_px);
+  read.number("disparity_step_px", sensor.disparity_step_px);
+  read.integer("depth_offset_u_px", sensor.depth_offset_u_px);
+  read.integer("depth_offset_v_px", sensor.depth_offset_v_px);
   sensor.validate();
 }
 
@@ -100,6 +121,7 @@ void readScene(const ParamReader& read, SceneParams& scene)
   read.integer("max_table_boxes", scene.max_table_boxes);
   read.number("upright_probability", scene.upright_probability);
   read.number("stack_probability", scene.stack_probability);
+  read.number("edge_radius_m", scene.edge_radius_m);
 }
 }  // namespace
 

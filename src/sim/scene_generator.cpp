@@ -76,6 +76,7 @@ public:
         break;
     }
     scene.world_T_camera = cameraLookingAt(scene.bricks);
+    scene.edge_radius_m = params_.edge_radius_m;
     return scene;
   }
 
@@ -104,6 +105,7 @@ private:
     // A pallet whose every box went missing still shows one box.
     if (scene.bricks.empty()) scene.bricks = {singleBrick()};
     scene.world_T_camera = cameraLookingAtBodies(scene.bricks);
+    scene.edge_radius_m = params_.edge_radius_m;
     return scene;
   }
 
@@ -264,6 +266,10 @@ SceneParams SceneParams::defaultsFor(SceneKind kind)
 {
   SceneParams params;
   params.kind = kind;
+  const bool box_kind = kind == SceneKind::kTouchingRows || kind == SceneKind::kPalletLayer ||
+                        kind == SceneKind::kPalletStack || kind == SceneKind::kTableBoxes;
+  // Cardboard boxes have edges rounded over a few millimetres.
+  if (box_kind) params.edge_radius_m = 0.004;
   switch (kind)
   {
     case SceneKind::kTouchingRows:
@@ -321,6 +327,7 @@ void SceneParams::validate(const BrickCatalogue& catalogue) const
   check(max_table_boxes >= 1 && max_table_boxes <= 20, "parameter 'max_table_boxes' must be in [1, 20]");
   check(upright_probability >= 0.0 && upright_probability <= 1.0, "parameter 'upright_probability' must be in [0, 1]");
   check(stack_probability >= 0.0 && stack_probability <= 1.0, "parameter 'stack_probability' must be in [0, 1]");
+  check(edge_radius_m >= 0.0 && edge_radius_m <= 0.02, "parameter 'edge_radius_m' must be in [0, 0.02]");
 }
 
 SceneGenerator::SceneGenerator(BrickCatalogue catalogue, SceneParams params)

@@ -6,6 +6,7 @@
 
 #include "brick_pose/sim/fast_random.h"
 #include "brick_pose/sim/ray_caster.h"
+#include "brick_pose/sim/stereo_matching.h"
 #include "brick_pose/sim/top_face_visibility.h"
 #include "brick_pose/sim/touching.h"
 
@@ -25,6 +26,7 @@ struct GeometryBuffers
   cv::Mat face;            // CV_8UC1
   cv::Mat normal_dot_ray;  // CV_32FC1, |cos| between the normal and the viewing ray
   cv::Mat lambert;         // CV_32FC1, max(0, n . light)
+  cv::Mat rounding;        // CV_32FC1, 0..1: how far into a rounded top edge (0 = flat)
 };
 
 struct LightingProfile
@@ -98,7 +100,7 @@ private:
     GeometryBuffers buffers{cv::Mat(height, width, CV_32FC1, cv::Scalar(kNoDepth)),
                             cv::Mat(height, width, CV_32SC1, cv::Scalar(RayHit::kNothing)),
                             cv::Mat(height, width, CV_8UC1, cv::Scalar(0)), cv::Mat(height, width, CV_32FC1, cv::Scalar(0)),
-                            cv::Mat(height, width, CV_32FC1, cv::Scalar(0))};
+                            cv::Mat(height, width, CV_32FC1, cv::Scalar(0)), cv::Mat(height, width, CV_32FC1, cv::Scalar(0))};
     const Eigen::Vector3d origin = Eigen::Vector3d::Zero();
     for (int v = 0; v < height; ++v)
       for (int u = 0; u < width; ++u)
@@ -122,7 +124,18 @@ private:
   {
     if (!hit.hitSomething()) return;
     const Eigen::Vector3d ray = camera_.ray(u, v);
-    buffers.depth_m.at<float>(v, u) = static_cast<float>(hit.ray_t);
+    const double rounding = roundingOf(hit);
+    double depth = hit.ray_t;
+    if (rounding > 0.0)
+    {
+      // The rounded edge lies below the face's plane by r - sqrt(r^2 - (r - d)^2)
+      // at distance d from the edge; along the ray (z = 1) that is sink / |n . ray|.
+      const double radius = scene_.edge_radius_m;
+      const double sink = radius - std::sqrt(std::max(0.0, radius * radius - std::pow(rounding * radius, 2)));
+      depth += sink / std::max(0.05, std::abs(hit.normal.dot(ray)));
+    }
+    buffers.rounding.at<float>(v, u) = static_cast<float>(rounding);
+    buffers.depth_m.at<float>(v, u) = static_cast<float>(depth);
     buffers.brick_index.at<int>(v, u) = hit.brick_index;
     buffers.face.at<unsigned char>(v, u) = static_cast<unsigned char>(hit.face);
     buffers.normal_dot_ray.at<float>(v, u) = static_cast<float>(std::abs(hit.normal.dot(ray.normalized())));
@@ -141,12 +154,27 @@ private:
     return labels;
   }
 
+  /// 0 on the flat of a face, rising to 1 at a top edge within
+  /// Scene::edge_radius_m of it: (r - d) / r at distance d from the nearest edge.
+  double roundingOf(const RayHit& hit) const
+  {
+    if (scene_.edge_radius_m <= 0.0 || !hit.hitBrick() || hit.face != CuboidFace::kTop) return 0.0;
+    const BrickType& type = scene_.bricks[hit.brick_index].type;
+    const double to_edge = std::min(0.5 * type.length_m - std::abs(hit.point_brick.x()),
+                                    0.5 * type.width_m - std::abs(hit.point_brick.y()));
+    return std::clamp(1.0 - to_edge / scene_.edge_radius_m, 0.0, 1.0);
+  }
+
+  /// A rounded edge turns away from the light and shadows its neighbour's:
+  /// it darkens toward the edge, to half at the edge itself.
+  static double roundingShade(double rounding) { return 1.0 - 0.5 * rounding * rounding; }
+
   /// Noise-free colour of what a ray hit, in 0..255 per channel (may exceed 255).
   Eigen::Vector3d radiance(const RayHit& hit, const Eigen::Vector3d& ray) const
   {
     if (!hit.hitSomething()) return Eigen::Vector3d::Zero();
     const double lambert = std::max(0.0, hit.normal.dot(toward_light_));
-    return albedo(hit, ray) * (profile_.ambient + profile_.diffuse * lambert);
+    return albedo(hit, ray) * (profile_.ambient + profile_.diffuse * lambert) * roundingShade(roundingOf(hit));
   }
 
   Eigen::Vector3d albedo(const RayHit& hit, const Eigen::Vector3d& ray) const
@@ -201,7 +229,8 @@ private:
     hit.ray_t = geometry.depth_m.at<float>(v, u);
     const Eigen::Vector3d ray = camera_.ray(u, v);
     const double lambert = geometry.lambert.at<float>(v, u);
-    return albedo(hit, ray) * (profile_.ambient + profile_.diffuse * lambert);
+    return albedo(hit, ray) * (profile_.ambient + profile_.diffuse * lambert) *
+           roundingShade(geometry.rounding.at<float>(v, u));
   }
 
   cv::Mat shade(const GeometryBuffers& geometry)
@@ -280,33 +309,91 @@ private:
     return caster_.blocked(point, right_imager);
   }
 
+  /// Pixels where the stereo window can change the depth: next to another
+  /// surface or on a rounded edge.
+  static cv::Mat surfaceBoundaries(const GeometryBuffers& geometry)
+  {
+    cv::Mat boundaries(geometry.depth_m.size(), CV_8UC1, cv::Scalar(0));
+    for (int v = 0; v < boundaries.rows; ++v)
+      for (int u = 0; u < boundaries.cols; ++u)
+      {
+        const int index = geometry.brick_index.at<int>(v, u);
+        const unsigned char face = geometry.face.at<unsigned char>(v, u);
+        bool boundary = geometry.rounding.at<float>(v, u) > 0.0f;
+        if (u + 1 < boundaries.cols)
+          boundary |= geometry.brick_index.at<int>(v, u + 1) != index || geometry.face.at<unsigned char>(v, u + 1) != face;
+        if (v + 1 < boundaries.rows)
+          boundary |= geometry.brick_index.at<int>(v + 1, u) != index || geometry.face.at<unsigned char>(v + 1, u) != face;
+        if (!boundary) continue;
+        boundaries.at<unsigned char>(v, u) = 255;
+        if (u + 1 < boundaries.cols) boundaries.at<unsigned char>(v, u + 1) = 255;
+        if (v + 1 < boundaries.rows) boundaries.at<unsigned char>(v + 1, u) = 255;
+      }
+    return boundaries;
+  }
+
+  /// The depth the stereo matcher reports before noise (the clean depth when
+  /// the window and fattening are off).
+  cv::Mat matchedDepth(const GeometryBuffers& geometry) const
+  {
+    if (sensor_.stereo_window_px <= 1 && sensor_.edge_fattening_px <= 0) return geometry.depth_m;
+    StereoWindow window;
+    window.window_px = sensor_.stereo_window_px;
+    window.fattening_px = sensor_.edge_fattening_px;
+    window.focal_baseline_px_m = camera_.fx_px * sensor_.baseline_m;
+    return stereoMatchedDepth(geometry.depth_m, surfaceBoundaries(geometry), window);
+  }
+
+  /// Aligned depth `offset` pixels off the colour image; pixels shifted in
+  /// from outside have no depth.
+  cv::Mat misregistered(const cv::Mat& depth_mm) const
+  {
+    const int du = sensor_.depth_offset_u_px, dv = sensor_.depth_offset_v_px;
+    if (du == 0 && dv == 0) return depth_mm;
+    cv::Mat shifted(depth_mm.size(), depth_mm.type(), cv::Scalar(0));
+    const int width = depth_mm.cols - std::abs(du), height = depth_mm.rows - std::abs(dv);
+    if (width <= 0 || height <= 0) return shifted;
+    depth_mm(cv::Rect(std::max(0, -du), std::max(0, -dv), width, height))
+        .copyTo(shifted(cv::Rect(std::max(0, du), std::max(0, dv), width, height)));
+    return shifted;
+  }
+
   cv::Mat measureDepth(const GeometryBuffers& geometry)
   {
     cv::Mat depth_mm(geometry.depth_m.size(), CV_16UC1, cv::Scalar(0));
+    const cv::Mat matched = matchedDepth(geometry);
     const cv::Mat correlated = correlatedNoise(8);
     // Split the axial sigma between a white and a correlated part.
     const double white_share = std::sqrt(0.5), correlated_share = std::sqrt(0.5);
     for (int v = 0; v < depth_mm.rows; ++v)
       for (int u = 0; u < depth_mm.cols; ++u)
       {
-        double depth = geometry.depth_m.at<float>(v, u);
+        double depth = matched.at<float>(v, u);
         if (std::isnan(depth) || depth < sensor_.min_depth_m || depth > sensor_.max_depth_m) continue;
+        // A pixel the window moved by more than its noise (a closed gap, a
+        // fattened edge) shows the surface that won the window: the grazing
+        // and shadow tests of what its ray really hit do not apply to it.
+        const float clean = geometry.depth_m.at<float>(v, u);
+        const bool taken_over =
+            std::isnan(clean) || std::abs(clean - depth) > std::max(0.002, sensor_.axialSigma(clean, camera_.fx_px));
         if (random_.bernoulli(sensor_.dropout_probability)) continue;
-        if (geometry.normal_dot_ray.at<float>(v, u) < sensor_.grazing_cos && random_.bernoulli(0.8)) continue;
+        if (!taken_over && geometry.normal_dot_ray.at<float>(v, u) < sensor_.grazing_cos && random_.bernoulli(0.8))
+          continue;
         if (profile_.bright_dropout_probability > 0.0 && geometry.lambert.at<float>(v, u) > 0.8 &&
             random_.bernoulli(profile_.bright_dropout_probability))
           continue;
-        if (inStereoShadow(geometry, u, v)) continue;
-        const double neighbour = edgeNeighbourDepth(geometry.depth_m, u, v);
+        if (!taken_over && inStereoShadow(geometry, u, v)) continue;
+        const double neighbour = edgeNeighbourDepth(matched, u, v);
         if (!std::isnan(neighbour) && random_.bernoulli(sensor_.flying_pixel_probability))
           depth += random_.uniform(0.1, 0.9) * (neighbour - depth);
         const double sigma = sensor_.axialSigma(depth, camera_.fx_px);
         depth += sigma * (white_share * random_.normal() + correlated_share * correlated.at<float>(v, u));
+        depth = sensor_.quantisedDepth(depth, camera_.fx_px);
         const double millimetres = std::round(depth * 1000.0);
         if (millimetres > 0.0 && millimetres < 65535.0)
           depth_mm.at<unsigned short>(v, u) = static_cast<unsigned short>(millimetres);
       }
-    return depth_mm;
+    return misregistered(depth_mm);
   }
 
   std::vector<BrickTruth> groundTruth(const SyntheticFrame& frame) const

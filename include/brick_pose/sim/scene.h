@@ -31,6 +31,11 @@ struct Scene
   /// Pose of the camera's optical frame (x right, y down, z forward).
   Eigen::Isometry3d world_T_camera = Eigen::Isometry3d::Identity();
   std::array<unsigned char, 3> ground_rgb{{120, 112, 100}};
+  /// Radius of the rounded edges of every brick's top face (cardboard boxes:
+  /// a few millimetres; 0 = sharp). The rounding dips the surface by up to
+  /// this much next to an edge and darkens it, so that boxes touching with
+  /// no gap still show a crease in depth and a dark line in colour.
+  double edge_radius_m = 0.0;
 };
 
 /// Faces of a cuboid, as stored in the face label image.

@@ -76,6 +76,9 @@ struct SceneParams
   double upright_probability = 0.7;
   /// Chance that a table box is put on top of an earlier one.
   double stack_probability = 0.3;
+  /// Radius of the rounded top edges (Scene::edge_radius_m); the box kinds
+  /// default to 4 mm, the brick kinds to sharp edges.
+  double edge_radius_m = 0.0;
 
   /// The defaults of `kind`: distances and view angles that frame its piles
   /// (pallets from 1.2-2 m above, table boxes obliquely 30-70 deg from the
