@@ -37,6 +37,7 @@ const std::vector<std::pair<std::string, std::string>>& rigParameterHelp()
       {"max_table_boxes", "table boxes: 1..this boxes (default 4)"},
       {"upright_probability", "table boxes: chance that a box stands on a side or an end (default 0.7)"},
       {"stack_probability", "table boxes: chance that a box is put on an earlier one (default 0.3)"},
+      {"markings", "paint types without a plate colour as cardboard with tape, labels and barcodes (default true)"},
       {"edge_radius_m", "radius of the rounded top edges: a crease in depth, a dark line in colour at seams "
                         "(default 0; the box kinds 0.004)"},
       {"lighting", "normal | sunlight | low_light (default normal)"},
@@ -122,6 +123,7 @@ void readScene(const ParamReader& read, SceneParams& scene)
   read.number("upright_probability", scene.upright_probability);
   read.number("stack_probability", scene.stack_probability);
   read.number("edge_radius_m", scene.edge_radius_m);
+  read.flag("markings", scene.markings);
 }
 }  // namespace
 

@@ -242,6 +242,24 @@ const std::vector<std::pair<SceneKind, std::string>>& kindNames()
   };
   return names;
 }
+/// Cardboard, tape and labels for every brick whose type has no plate
+/// colour. From a random source of their own, so that the layouts (and the
+/// scenes of earlier versions) do not change with them.
+void addMarkings(Scene& scene, std::uint64_t seed)
+{
+  FastRandom random(seed ^ 0x6D61726B696E6773ULL);
+  for (PlacedBrick& brick : scene.bricks)
+  {
+    if (brick.type.hasPlateColour()) continue;
+    SurfaceMarkings& markings = brick.markings;
+    markings.cardboard = true;
+    const double tape = random.uniform();
+    markings.tape = tape < 0.55 ? SurfaceMarkings::Tape::kBrown
+                                : tape < 0.8 ? SurfaceMarkings::Tape::kClear : SurfaceMarkings::Tape::kNone;
+    markings.labels = static_cast<int>(random.next() % 3);
+    markings.seed = random.next();
+  }
+}
 }  // namespace
 
 SceneKind sceneKindFromString(const std::string& name)
@@ -338,7 +356,9 @@ SceneGenerator::SceneGenerator(BrickCatalogue catalogue, SceneParams params)
 
 Scene SceneGenerator::generate(std::uint64_t seed) const
 {
-  return Builder(catalogue_, params_, seed).build();
+  Scene scene = Builder(catalogue_, params_, seed).build();
+  if (params_.markings) addMarkings(scene, seed);
+  return scene;
 }
 
 Eigen::Isometry3d lookAt(const Eigen::Vector3d& target_world, double distance_m, double elevation_deg,

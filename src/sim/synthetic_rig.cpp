@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
+#include "brick_pose/sim/box_print.h"
 #include "brick_pose/sim/fast_random.h"
 #include "brick_pose/sim/ray_caster.h"
 #include "brick_pose/sim/stereo_matching.h"
@@ -77,6 +79,11 @@ public:
     // The sun (or lamp) shines from above and a little behind the camera.
     const Eigen::Vector3d toward_light_world = Eigen::Vector3d(0.3, -0.2, 1.0).normalized();
     toward_light_ = scene.world_T_camera.linear().transpose() * toward_light_world;
+    for (const PlacedBrick& brick : scene.bricks)
+      prints_.push_back(brick.markings.cardboard ? std::optional<BoxPrint>(BoxPrint(brick.type, brick.markings))
+                                                 : std::nullopt);
+    for (const Eigen::Isometry3d& camera_T_brick : caster_.cameraTBricks())
+      brick_T_camera_.push_back(camera_T_brick.inverse());
   }
 
   SyntheticFrame render()
@@ -126,14 +133,8 @@ private:
     const Eigen::Vector3d ray = camera_.ray(u, v);
     const double rounding = roundingOf(hit);
     double depth = hit.ray_t;
-    if (rounding > 0.0)
-    {
-      // The rounded edge lies below the face's plane by r - sqrt(r^2 - (r - d)^2)
-      // at distance d from the edge; along the ray (z = 1) that is sink / |n . ray|.
-      const double radius = scene_.edge_radius_m;
-      const double sink = radius - std::sqrt(std::max(0.0, radius * radius - std::pow(rounding * radius, 2)));
-      depth += sink / std::max(0.05, std::abs(hit.normal.dot(ray)));
-    }
+    // Along the ray (z = 1) the rounding's dip below the face is sink / |n . ray|.
+    if (rounding > 0.0) depth += roundingSink(rounding) / std::max(0.05, std::abs(hit.normal.dot(ray)));
     buffers.rounding.at<float>(v, u) = static_cast<float>(rounding);
     buffers.depth_m.at<float>(v, u) = static_cast<float>(depth);
     buffers.brick_index.at<int>(v, u) = hit.brick_index;
@@ -165,19 +166,35 @@ private:
     return std::clamp(1.0 - to_edge / scene_.edge_radius_m, 0.0, 1.0);
   }
 
+  /// How far a rounded edge lies below its face's plane: r - sqrt(r^2 - (r - d)^2)
+  /// at distance d from the edge, with rounding = (r - d) / r.
+  double roundingSink(double rounding) const
+  {
+    const double radius = scene_.edge_radius_m;
+    return radius - std::sqrt(std::max(0.0, radius * radius * (1.0 - rounding * rounding)));
+  }
+
   /// A rounded edge turns away from the light and shadows its neighbour's:
   /// it darkens toward the edge, to half at the edge itself.
   static double roundingShade(double rounding) { return 1.0 - 0.5 * rounding * rounding; }
 
   /// Noise-free colour of what a ray hit, in 0..255 per channel (may exceed 255).
-  Eigen::Vector3d radiance(const RayHit& hit, const Eigen::Vector3d& ray) const
+  /// `footprint_m`: the size on the surface of what the sample stands for.
+  Eigen::Vector3d radiance(const RayHit& hit, const Eigen::Vector3d& ray, double footprint_m) const
   {
     if (!hit.hitSomething()) return Eigen::Vector3d::Zero();
     const double lambert = std::max(0.0, hit.normal.dot(toward_light_));
-    return albedo(hit, ray) * (profile_.ambient + profile_.diffuse * lambert) * roundingShade(roundingOf(hit));
+    return albedo(hit, ray, footprint_m) * (profile_.ambient + profile_.diffuse * lambert) *
+           roundingShade(roundingOf(hit));
   }
 
-  Eigen::Vector3d albedo(const RayHit& hit, const Eigen::Vector3d& ray) const
+  /// Size of one pixel (times `fraction`) on a surface at `depth_m` seen at |cos| `normal_dot_ray`.
+  double footprintOf(double depth_m, double normal_dot_ray, double fraction = 1.0) const
+  {
+    return fraction * depth_m / camera_.fx_px / std::max(0.3, normal_dot_ray);
+  }
+
+  Eigen::Vector3d albedo(const RayHit& hit, const Eigen::Vector3d& ray, double footprint_m) const
   {
     if (hit.brick_index == RayHit::kGround)
     {
@@ -187,7 +204,9 @@ private:
     }
     const BrickType& type = scene_.bricks[hit.brick_index].type;
     const auto& rgb = hit.face == CuboidFace::kTop ? type.plate_rgb : type.body_rgb;
-    return Eigen::Vector3d(rgb[0], rgb[1], rgb[2]);
+    const Eigen::Vector3d base(rgb[0], rgb[1], rgb[2]);
+    const std::optional<BoxPrint>& print = prints_[hit.brick_index];
+    return print ? print->colourAt(base, hit.face, hit.point_brick, footprint_m) : base;
   }
 
   /// A pixel whose 4-neighbours see another surface is a mix of surfaces in a
@@ -218,7 +237,9 @@ private:
         for (int i = 0; i < kSamples; ++i)
         {
           const Eigen::Vector3d ray = camera_.ray(u - 0.5 + (i + 0.5) / kSamples, v - 0.5 + (j + 0.5) / kSamples);
-          sum += radiance(caster_.cast(Eigen::Vector3d::Zero(), ray), ray);
+          const RayHit hit = caster_.cast(Eigen::Vector3d::Zero(), ray);
+          const double footprint_m = footprintOf(hit.ray_t, std::abs(hit.normal.dot(ray.normalized())), 1.0 / kSamples);
+          sum += radiance(hit, ray, footprint_m);
         }
       return sum / (kSamples * kSamples);
     }
@@ -228,8 +249,10 @@ private:
     hit.face = static_cast<CuboidFace>(geometry.face.at<unsigned char>(v, u));
     hit.ray_t = geometry.depth_m.at<float>(v, u);
     const Eigen::Vector3d ray = camera_.ray(u, v);
+    if (hit.hitBrick() && prints_[hit.brick_index]) hit.point_brick = brick_T_camera_[hit.brick_index] * (hit.ray_t * ray);
     const double lambert = geometry.lambert.at<float>(v, u);
-    return albedo(hit, ray) * (profile_.ambient + profile_.diffuse * lambert) *
+    const double footprint_m = footprintOf(hit.ray_t, geometry.normal_dot_ray.at<float>(v, u));
+    return albedo(hit, ray, footprint_m) * (profile_.ambient + profile_.diffuse * lambert) *
            roundingShade(geometry.rounding.at<float>(v, u));
   }
 
@@ -302,7 +325,13 @@ private:
   bool inStereoShadow(const GeometryBuffers& geometry, int u, int v) const
   {
     if (!sensor_.stereo_shadow) return false;
-    const double depth = geometry.depth_m.at<float>(v, u);
+    double depth = geometry.depth_m.at<float>(v, u);
+    // A rounded edge dips below its face's plane, where the neighbour's
+    // corner would hide it; the edge itself is in plain sight: test the plane.
+    const double rounding = geometry.rounding.at<float>(v, u);
+    if (rounding > 0.0)
+      depth -= roundingSink(rounding) /
+               std::max(0.05, geometry.normal_dot_ray.at<float>(v, u) * camera_.ray(u, v).norm());
     const Eigen::Vector3d point = camera_.backProject(u, v, depth);
     // The second imager sits one baseline to the right of the reference one.
     const Eigen::Vector3d right_imager(sensor_.baseline_m, 0.0, 0.0);
@@ -463,6 +492,8 @@ private:
   LightingProfile profile_;
   FastRandom random_;
   Eigen::Vector3d toward_light_;
+  std::vector<std::optional<BoxPrint>> prints_;  // per brick: printed cardboard, or plain colour
+  std::vector<Eigen::Isometry3d> brick_T_camera_;
 };
 }  // namespace
 

@@ -7,6 +7,7 @@
 // of the top face; the body spans z in [-height, 0].
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -19,10 +20,33 @@ namespace brick_pose
 {
 namespace sim
 {
+/// Colour-only details of a plain box's surface: none of them changes depth,
+/// all of them put edges into the colour image that are not a box's edges.
+struct SurfaceMarkings
+{
+  enum class Tape : unsigned char
+  {
+    kNone,
+    kBrown,  // packing tape, darker than the cardboard
+    kClear,  // clear tape: a faint sheen
+  };
+
+  /// Kraft cardboard: fibre texture, and a dark flap seam along the top's
+  /// long axis where no tape covers it.
+  bool cardboard = false;
+  /// A 48 mm tape stripe along the top's long axis and 7 cm down both ends.
+  Tape tape = Tape::kNone;
+  /// Printed labels on the top (0..2): white, lines of text, a barcode.
+  int labels = 0;
+  /// Places the labels, the barcodes' bars and the texture.
+  std::uint64_t seed = 0;
+};
+
 struct PlacedBrick
 {
   BrickType type;
   Eigen::Isometry3d world_T_brick = Eigen::Isometry3d::Identity();
+  SurfaceMarkings markings;
 };
 
 struct Scene

@@ -79,6 +79,9 @@ struct SceneParams
   /// Radius of the rounded top edges (Scene::edge_radius_m); the box kinds
   /// default to 4 mm, the brick kinds to sharp edges.
   double edge_radius_m = 0.0;
+  /// Types without a plate colour are painted as cardboard with tape,
+  /// printed labels and barcodes (false: plain colour).
+  bool markings = true;
 
   /// The defaults of `kind`: distances and view angles that frame its piles
   /// (pallets from 1.2-2 m above, table boxes obliquely 30-70 deg from the

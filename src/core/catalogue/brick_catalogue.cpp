@@ -117,8 +117,18 @@ BrickType parseBrick(const cv::FileNode& node)
     type.plate_rgb = readArray<3, unsigned char>(node["plate_rgb"], "plate_rgb", type.name);
   if (!node["body_rgb"].empty())
     type.body_rgb = readArray<3, unsigned char>(node["body_rgb"], "body_rgb", type.name);
-  type.plate_hsv.min = readArray<3, int>(node["hsv_min"], "hsv_min", type.name);
-  type.plate_hsv.max = readArray<3, int>(node["hsv_max"], "hsv_max", type.name);
+  // Both or neither: a type without them has no plate colour.
+  const bool has_min = !node["hsv_min"].empty(), has_max = !node["hsv_max"].empty();
+  if (has_min != has_max)
+    throw ConfigError("brick catalogue: brick '" + type.name + "' has " + (has_min ? "hsv_min" : "hsv_max") +
+                      " without " + (has_min ? "hsv_max" : "hsv_min") + " (give both, or neither for a type with no plate colour)");
+  if (has_min)
+  {
+    HsvRange range;
+    range.min = readArray<3, int>(node["hsv_min"], "hsv_min", type.name);
+    range.max = readArray<3, int>(node["hsv_max"], "hsv_max", type.name);
+    type.plate_hsv = range;
+  }
   type.validate();
   return type;
 }
@@ -142,12 +152,13 @@ void BrickType::validate() const
   // x is the long edge by convention; the registration's symmetry handling
   // relies on it.
   if (width_m > length_m) fail("width_m must not exceed length_m (x is the long edge)");
+  if (!plate_hsv) return;
   for (int i = 0; i < 3; ++i)
   {
     const int limit = i == 0 ? 180 : 255;
-    if (plate_hsv.min[i] < 0 || plate_hsv.min[i] > limit || plate_hsv.max[i] < 0 || plate_hsv.max[i] > limit)
+    if (plate_hsv->min[i] < 0 || plate_hsv->min[i] > limit || plate_hsv->max[i] < 0 || plate_hsv->max[i] > limit)
       fail("hsv_min/hsv_max channel " + std::to_string(i) + " must be in 0.." + std::to_string(limit));
-    if (i > 0 && plate_hsv.min[i] > plate_hsv.max[i])
+    if (i > 0 && plate_hsv->min[i] > plate_hsv->max[i])
       fail("hsv_min must not exceed hsv_max for saturation and value");
   }
 }
@@ -174,8 +185,10 @@ BrickCatalogue BrickCatalogue::mbzirc2020()
     type.height_m = 0.20;
     type.plate_rgb = plate;
     type.body_rgb = body;
-    type.plate_hsv.min = hsv_min;
-    type.plate_hsv.max = hsv_max;
+    HsvRange range;
+    range.min = hsv_min;
+    range.max = hsv_max;
+    type.plate_hsv = range;
     return type;
   };
   // Keep in step with config/bricks.yaml (a unit test checks they agree).
