@@ -55,6 +55,17 @@ BoxPrint::BoxPrint(const BrickType& type, const SurfaceMarkings& markings)
   : markings_(markings), half_length_m_(0.5 * type.length_m), half_width_m_(0.5 * type.width_m)
 {
   FastRandom random(markings.seed);
+  if (markings.printed)
+  {
+    // A packaging design: a few saturated colours and a light one.
+    for (int k = 0; k < 4; ++k)
+    {
+      Eigen::Vector3d colour;
+      for (int c = 0; c < 3; ++c) colour[c] = random.uniform(20.0, 250.0);
+      palette_.push_back(colour);
+    }
+    palette_.push_back(Eigen::Vector3d(235.0, 230.0, 215.0));
+  }
   for (int k = 0; k < markings.labels; ++k)
   {
     Label label;
@@ -138,11 +149,35 @@ Eigen::Vector3d BoxPrint::topColour(const Eigen::Vector3d& base_rgb, double x, d
   return colour;
 }
 
+Eigen::Vector3d BoxPrint::printedColour(CuboidFace face, double a, double b) const
+{
+  // Posterised value noise: patches 4-8 cm across with hard edges between
+  // colours, different on every face.
+  const std::uint64_t seed = markings_.seed + 0x9E37ULL * static_cast<std::uint64_t>(face);
+  const double level = valueNoise(a, b, 0.06, seed) * 0.7 + valueNoise(a, b, 0.02, seed ^ 0x5A5AULL) * 0.3;
+  const std::size_t index = std::min(palette_.size() - 1, static_cast<std::size_t>(level * palette_.size()));
+  return palette_[index];
+}
+
 Eigen::Vector3d BoxPrint::colourAt(const Eigen::Vector3d& base_rgb, CuboidFace face, const Eigen::Vector3d& point_brick,
                                    double footprint_m) const
 {
   const double size = std::max(footprint_m, 1e-5);
   const double x = point_brick.x(), y = point_brick.y(), z = point_brick.z();
+  if (markings_.printed)
+  {
+    switch (face)
+    {
+      case CuboidFace::kPlusX:
+      case CuboidFace::kMinusX:
+        return printedColour(face, y, z);
+      case CuboidFace::kPlusY:
+      case CuboidFace::kMinusY:
+        return printedColour(face, x, z);
+      default:
+        return printedColour(face, x, y);
+    }
+  }
   switch (face)
   {
     case CuboidFace::kTop:

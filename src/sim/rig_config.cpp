@@ -20,6 +20,8 @@ const std::vector<std::pair<std::string, std::string>>& rigParameterHelp()
       {"seed", "scene seed; the same seed gives the same scene and noise (default 1)"},
       {"min_distance_m", "nearest camera-to-pile distance (default 0.6)"},
       {"max_distance_m", "farthest camera-to-pile distance (default 1.5)"},
+      {"view", "top (elevation 65-89 deg) | oblique (20-60 deg: 30-70 deg from the vertical); "
+               "min/max_elevation_deg override it"},
       {"min_elevation_deg", "lowest view angle below the horizon (default 55)"},
       {"max_elevation_deg", "highest view angle, 90 = straight down (default 88)"},
       {"max_tilt_deg", "largest brick tilt (default 8)"},
@@ -104,6 +106,7 @@ void readScene(const ParamReader& read, SceneParams& scene)
   // The kind first: its defaults are what the other parameters override.
   if (const auto kind = read.text("scene")) scene = SceneParams::defaultsFor(sceneKindFromString(*kind));
   if (const auto types = read.text("types")) scene.types = splitList(*types);
+  if (const auto view = read.text("view")) scene.applyView(*view);
   read.number("min_distance_m", scene.min_distance_m);
   read.number("max_distance_m", scene.max_distance_m);
   read.number("min_elevation_deg", scene.min_elevation_deg);

@@ -245,7 +245,7 @@ const std::vector<std::pair<SceneKind, std::string>>& kindNames()
 /// Cardboard, tape and labels for every brick whose type has no plate
 /// colour. From a random source of their own, so that the layouts (and the
 /// scenes of earlier versions) do not change with them.
-void addMarkings(Scene& scene, std::uint64_t seed)
+void addMarkings(Scene& scene, std::uint64_t seed, SceneKind kind)
 {
   FastRandom random(seed ^ 0x6D61726B696E6773ULL);
   for (PlacedBrick& brick : scene.bricks)
@@ -253,6 +253,8 @@ void addMarkings(Scene& scene, std::uint64_t seed)
     if (brick.type.hasPlateColour()) continue;
     SurfaceMarkings& markings = brick.markings;
     markings.cardboard = true;
+    // Boxes on a table are mostly printed packaging, as in the mOSD scenes.
+    if (kind == SceneKind::kTableBoxes) markings.printed = random.bernoulli(0.7);
     const double tape = random.uniform();
     markings.tape = tape < 0.55 ? SurfaceMarkings::Tape::kBrown
                                 : tape < 0.8 ? SurfaceMarkings::Tape::kClear : SurfaceMarkings::Tape::kNone;
@@ -278,6 +280,23 @@ std::string toString(SceneKind kind)
   for (const auto& [known_kind, name] : kindNames())
     if (known_kind == kind) return name;
   return "single";
+}
+
+void SceneParams::applyView(const std::string& view)
+{
+  if (view == "top")
+  {
+    min_elevation_deg = 65.0;
+    max_elevation_deg = 89.0;
+  }
+  else if (view == "oblique")
+  {
+    // 30-70 degrees from the vertical: side faces are large.
+    min_elevation_deg = 20.0;
+    max_elevation_deg = 60.0;
+  }
+  else
+    throw ConfigError("parameter 'view': unknown view '" + view + "' (expected top or oblique)");
 }
 
 SceneParams SceneParams::defaultsFor(SceneKind kind)
@@ -357,7 +376,7 @@ SceneGenerator::SceneGenerator(BrickCatalogue catalogue, SceneParams params)
 Scene SceneGenerator::generate(std::uint64_t seed) const
 {
   Scene scene = Builder(catalogue_, params_, seed).build();
-  if (params_.markings) addMarkings(scene, seed);
+  if (params_.markings) addMarkings(scene, seed, params_.kind);
   return scene;
 }
 

@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <set>
+
 #include "brick_pose/sim/box_print.h"
 #include "brick_pose/sim/d415_modes.h"
 #include "brick_pose/sim/scene_generator.h"
@@ -111,6 +114,41 @@ TEST(BoxPrint, MarkingsChangeColourOnlyNotDepth)
   const SyntheticFrame a = rig.render(printed, 5), b = rig.render(plain, 5);
   EXPECT_EQ(cv::norm(a.depth_mm, b.depth_mm, cv::NORM_INF), 0.0);
   EXPECT_GT(cv::norm(a.rgb, b.rgb, cv::NORM_L1), 0.0);
+}
+
+TEST(BoxPrint, PrintedPackagingHasPatchesOfColourOnEveryFace)
+{
+  SurfaceMarkings printed = markings(SurfaceMarkings::Tape::kNone, 0, 11);
+  printed.printed = true;
+  const BoxPrint print(carton(), printed);
+  for (const CuboidFace face : {CuboidFace::kTop, CuboidFace::kPlusX, CuboidFace::kMinusY})
+  {
+    std::set<std::array<int, 3>> colours;
+    for (double a = -0.12; a <= 0.12; a += 0.01)
+      for (double b = -0.12; b <= 0.0; b += 0.01)
+      {
+        const Eigen::Vector3d point = face == CuboidFace::kTop     ? Eigen::Vector3d(a, b + 0.06, 0.0)
+                                      : face == CuboidFace::kPlusX ? Eigen::Vector3d(0.2, a, b)
+                                                                   : Eigen::Vector3d(a, -0.15, b);
+        const Eigen::Vector3d colour = print.colourAt(kCardboard, face, point, 0.001);
+        colours.insert({{int(colour[0]), int(colour[1]), int(colour[2])}});
+      }
+    EXPECT_GE(colours.size(), 3u) << "face " << int(face);
+  }
+}
+
+TEST(BoxPrint, TableBoxesAreMostlyPrintedPackaging)
+{
+  const SceneGenerator generator(BrickCatalogue({carton()}), SceneParams::defaultsFor(SceneKind::kTableBoxes));
+  int printed = 0, boxes = 0;
+  for (std::uint64_t seed = 0; seed < 20; ++seed)
+    for (const PlacedBrick& brick : generator.generate(seed).bricks)
+    {
+      ++boxes;
+      printed += brick.markings.printed ? 1 : 0;
+    }
+  EXPECT_GT(printed, boxes / 2);
+  EXPECT_LT(printed, boxes);
 }
 
 TEST(BoxPrint, BricksWithAPlateColourStayPlain)

@@ -307,6 +307,23 @@ TEST(TopFaceTruth, TallerNeighbourSeenObliquelyHidesTheSharedEdge)
   EXPECT_TRUE(frame.truth[1].top_face_complete);
 }
 
+TEST(TopFaceTruth, TableViewsShowLargeSideFacesAndNoUprightTopIsComplete)
+{
+  SceneParams params = SceneParams::defaultsFor(SceneKind::kTableBoxes);
+  params.upright_probability = 1.0;
+  const SceneGenerator generator(twoBoxCatalogue(), params);
+  const SyntheticRig rig(vgaCamera(), SensorModel());
+  int large_vertical_tops = 0;
+  for (std::uint64_t seed = 0; seed < 4; ++seed)
+    for (const BrickTruth& truth : rig.render(generator.generate(seed), seed).truth)
+    {
+      EXPECT_NEAR(truth.top_face_tilt_deg, 90.0, 1e-6);
+      EXPECT_FALSE(truth.top_face_complete) << "seed " << seed << " box " << truth.instance_id;
+      large_vertical_tops += truth.visible_top_pixels > 2000 ? 1 : 0;
+    }
+  EXPECT_GT(large_vertical_tops, 0) << "the catalogue top faces, vertical, are in plain view";
+}
+
 TEST(TopFaceTruth, UprightBoxFacingTheCameraIsNotACompleteTop)
 {
   Scene scene;

@@ -336,6 +336,13 @@ TEST(RigConfig, SceneKindBringsItsDefaultsAndParametersOverrideThem)
   EXPECT_DOUBLE_EQ(table.scene.max_elevation_deg, 60.0) << "oblique by default";
   EXPECT_DOUBLE_EQ(table.scene.upright_probability, 1.0);
   EXPECT_DOUBLE_EQ(table.scene.max_gap_m, 0.0);
+  const RigConfig oblique = rigConfigFrom(lookupFrom({{"scene", "organised_pile"}, {"view", "oblique"}}));
+  EXPECT_DOUBLE_EQ(oblique.scene.min_elevation_deg, 20.0);
+  EXPECT_DOUBLE_EQ(oblique.scene.max_elevation_deg, 60.0);
+  const RigConfig steeper =
+      rigConfigFrom(lookupFrom({{"view", "oblique"}, {"max_elevation_deg", "50"}}));
+  EXPECT_DOUBLE_EQ(steeper.scene.max_elevation_deg, 50.0) << "elevation parameters override the view";
+  EXPECT_NE(configErrorOf({{"view", "side"}}).find("'view'"), std::string::npos);
 }
 }  // namespace sim
 }  // namespace brick_pose

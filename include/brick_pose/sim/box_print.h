@@ -43,12 +43,14 @@ private:
   };
 
   Eigen::Vector3d topColour(const Eigen::Vector3d& base_rgb, double x, double y, double footprint_m) const;
+  Eigen::Vector3d printedColour(CuboidFace face, double a, double b) const;
   double fibre(double a, double b) const;
 
   SurfaceMarkings markings_;
   double half_length_m_;
   double half_width_m_;
   std::vector<Label> labels_;
+  std::vector<Eigen::Vector3d> palette_;  // printed packaging's colours
 };
 }  // namespace sim
 }  // namespace brick_pose

@@ -34,6 +34,10 @@ struct SurfaceMarkings
   /// Kraft cardboard: fibre texture, and a dark flap seam along the top's
   /// long axis where no tape covers it.
   bool cardboard = false;
+  /// Printed packaging (cereal and tea boxes, as in the mOSD scenes): every
+  /// face covered in patches of vivid colour with hard edges. Replaces the
+  /// cardboard look when set.
+  bool printed = false;
   /// A 48 mm tape stripe along the top's long axis and 7 cm down both ends.
   Tape tape = Tape::kNone;
   /// Printed labels on the top (0..2): white, lines of text, a barcode.

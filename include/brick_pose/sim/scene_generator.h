@@ -88,6 +88,11 @@ struct SceneParams
   /// vertical), and its layer and row counts.
   static SceneParams defaultsFor(SceneKind kind);
 
+  /// Named view angles: "top" (elevation 65-89 deg) or "oblique" (20-60 deg
+  /// above the horizon, i.e. 30-70 deg from the vertical). Throws ConfigError
+  /// naming parameter 'view' otherwise.
+  void applyView(const std::string& view);
+
   /// Throws ConfigError naming the offending field.
   void validate(const BrickCatalogue& catalogue) const;
 };
