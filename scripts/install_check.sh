@@ -22,7 +22,7 @@ check() {  # check NAME COMMAND...: runs COMMAND, records a test case
 
 in_install_space() {  # a clean environment with only the install space sourced
   env -i HOME="$HOME" PATH=/usr/bin:/bin LANG=C.UTF-8 ROS_MASTER_URI=http://127.0.0.1:11472 ROS_HOSTNAME=127.0.0.1 \
-    bash -c "source '$install/setup.bash' && $1"
+    bash -c "source '$install/setup.bash' || exit 1; $1"
 }
 
 check "catkin_make install" bash -c "cd '$ws' && catkin_make install -DCMAKE_INSTALL_PREFIX='$install' -j2"

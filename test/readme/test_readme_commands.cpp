@@ -170,15 +170,22 @@ protected:
                                   "/pile.bag --frames 10 --rate 10 --scene single --seed 3 >" + bag_dir_ +
                                   "/simulate.log 2>&1";
     ASSERT_EQ(std::system(write_bag.c_str()), 0) << readFile(bag_dir_ + "/simulate.log");
+    // One master for the suite; this client starts talking to it only once it is up.
+    roscore_ = new Background(kRosEnv + "roscore -p " + kMasterPort, bag_dir_ + "/roscore.log");
+    ASSERT_TRUE(waitFor(30.0, [] { return ros::master::check(); })) << readFile(bag_dir_ + "/roscore.log");
+    spinner_ = new ros::AsyncSpinner(2);
+    spinner_->start();
+    ready_ = true;
   }
 
-  void SetUp() override
+  // Without a master the ROS client would wait for one forever.
+  void SetUp() override { ASSERT_TRUE(ready_) << "the suite's roscore did not start"; }
+
+  static void TearDownTestSuite()
   {
-    roscore_ = std::make_unique<Background>(kRosEnv + "roscore -p " + kMasterPort, bag_dir_ + "/roscore.log");
-    ASSERT_TRUE(waitFor(20.0, [] { return ros::master::check(); })) << readFile(bag_dir_ + "/roscore.log");
+    delete spinner_;
+    delete roscore_;
   }
-
-  void TearDown() override { roscore_.reset(); }
 
   /// Runs a README line in the bag's folder, with the workspace sourced.
   std::unique_ptr<Background> launch(const std::string& readme_command, const std::string& log_name)
@@ -188,9 +195,14 @@ protected:
   }
 
   static std::string bag_dir_;
-  std::unique_ptr<Background> roscore_;
+  static Background* roscore_;
+  static ros::AsyncSpinner* spinner_;
+  static bool ready_;
 };
+bool ReadmeCommands::ready_ = false;
 std::string ReadmeCommands::bag_dir_;
+Background* ReadmeCommands::roscore_ = nullptr;
+ros::AsyncSpinner* ReadmeCommands::spinner_ = nullptr;
 
 TEST_F(ReadmeCommands, LoopedBagGivesDetectionsOnEveryPass)
 {
@@ -234,13 +246,39 @@ TEST_F(ReadmeCommands, BagPlayedOnceLeavesTheServiceAnswering)
 
 TEST_F(ReadmeCommands, DemoScriptWithTheReadmesArguments)
 {
-  TearDown();  // scripts/demo.sh starts its own master
+  // scripts/demo.sh starts a master of its own, on another port.
   const std::string command = readmeLine("scripts/demo.sh");
   const std::string log_path = bag_dir_ + "/demo.log";
   const int status = std::system(("cd " + kRepositoryDir + " && " + command + " >" + log_path + " 2>&1").c_str());
   const std::string output = readFile(log_path);
   EXPECT_EQ(WEXITSTATUS(status), 0) << output;
   EXPECT_NE(output.find("get_brick_pose"), std::string::npos) << output;
+}
+TEST(LaunchFiles, D415LaunchParsesAgainstTheDriversInterface)
+{
+  // realsense2_camera is not packaged by Debian: a stub of its rs_camera.launch
+  // arguments (test/stubs) stands in; roslaunch resolves every include,
+  // argument and substitution and lists the nodes it would start.
+  const std::string list = std::string(::testing::TempDir()) + "brick_pose_d415_nodes.txt";
+  const std::string command = kRosEnv + "export ROS_PACKAGE_PATH=" + kRepositoryDir + "/test/stubs:$ROS_PACKAGE_PATH; " +
+                              "roslaunch --nodes " + kRepositoryDir + "/launch/d415.launch mode:=colour_free >" + list +
+                              " 2>&1";
+  const int status = std::system(("bash -c '" + command + "'").c_str());
+  const std::string nodes = readFile(list);
+  EXPECT_EQ(WEXITSTATUS(status), 0) << nodes;
+  for (const char* node : {"/brick_pose/ingestion", "/brick_pose/segmentation", "/brick_pose/roi_filter",
+                           "/brick_pose/registration", "/brick_pose/pose_correction"})
+    EXPECT_NE(nodes.find(node), std::string::npos) << node << " missing from:\n" << nodes;
+}
+
+TEST(LaunchFiles, D415ScriptSaysWhatToInstallWithoutTheDriver)
+{
+  const std::string log_path = std::string(::testing::TempDir()) + "brick_pose_d415_script.txt";
+  const int status = std::system(("cd " + kRepositoryDir + " && " + readmeLine("scripts/d415.sh") + " >" + log_path +
+                                  " 2>&1").c_str());
+  const std::string output = readFile(log_path);
+  EXPECT_EQ(WEXITSTATUS(status), 1) << output;
+  EXPECT_NE(output.find("realsense2_camera ROS driver is not installed"), std::string::npos) << output;
 }
 }  // namespace
 
@@ -250,10 +288,7 @@ int main(int argc, char** argv)
   setenv("ROS_MASTER_URI", ("http://127.0.0.1:" + kMasterPort).c_str(), 1);
   setenv("ROS_HOSTNAME", "127.0.0.1", 1);
   ros::init(argc, argv, "readme_commands_test", ros::init_options::AnonymousName | ros::init_options::NoSigintHandler);
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
   const int result = RUN_ALL_TESTS();
-  spinner.stop();
   ros::shutdown();
   return result;
 }
