@@ -91,6 +91,7 @@ private:
     catalogue_ = catalogueFrom(lookup);
     estimator_ = std::make_unique<BrickPoseEstimator>(catalogue_, estimatorParamsFrom(lookup));
     tracker_ = BrickTracker(trackerParamsFrom(lookup));
+    tracked_params_ = trackedPoseParamsFrom(lookup);
     tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
     tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_, getMTNodeHandle());
     detections_publisher_ = node().advertise<BrickDetectionArray>("detections", 5);
@@ -155,13 +156,16 @@ private:
     const auto& candidates = registrations->candidates->front_end.candidates;
     std::vector<BrickPoseEstimate> estimates;
     std::vector<const BrickCandidate*> refined;
+    std::vector<std::string> sources;
     for (const RegisteredCandidate& registered : registrations->registered)
     {
       const BrickCandidate& candidate = candidates[registered.candidate_index];
       try
       {
-        estimates.push_back(estimator_->refine(candidate, registered.registration));
+        std::string source = registered.tracked ? "tracked" : "registered";
+        estimates.push_back(refineTrackingMoves(candidate, registered, source));
         refined.push_back(&candidate);
+        sources.push_back(source);
       }
       catch (const InputError& e)
       {
@@ -172,14 +176,29 @@ private:
     }
     itemsProcessed(static_cast<int>(registrations->registered.size()), static_cast<int>(estimates.size()));
     const double refinement_ms = (ros::WallTime::now() - start).toSec() * 1e3;
-    auto detections = makeDetections(*registrations, estimates, refined);
+    auto detections = makeDetections(*registrations, estimates, refined, sources);
     detections->refinement_ms = refinement_ms;
     publish(detections, frame);
   }
 
+  /// Refines the initial pose. A tracked pose whose correction is larger
+  /// than a static brick's noise says the brick moved or its pose jumped: it
+  /// is registered afresh with Super4PCS and refined from there.
+  BrickPoseEstimate refineTrackingMoves(const BrickCandidate& candidate, const RegisteredCandidate& registered,
+                                        std::string& source)
+  {
+    BrickPoseEstimate estimate = estimator_->refine(candidate, registered.registration);
+    if (!registered.tracked || !correctionSaysMoved(estimate.correction, tracked_params_)) return estimate;
+    NODELET_DEBUG("%s brick moved (correction %.1f mm, %.2f deg): registered afresh", candidate.type_name.c_str(),
+                  1e3 * estimate.correction.offset_m.norm(), estimate.correction.yawDeg());
+    source = "registered (moved)";
+    return estimator_->refine(candidate, estimator_->registerCandidate(candidate));
+  }
+
   boost::shared_ptr<BrickDetectionArray> makeDetections(const RegistrationsMessage& registrations,
                                                         const std::vector<BrickPoseEstimate>& estimates,
-                                                        const std::vector<const BrickCandidate*>& candidates)
+                                                        const std::vector<const BrickCandidate*>& candidates,
+                                                        const std::vector<std::string>& sources)
   {
     auto detections = boost::make_shared<BrickDetectionArray>();
     detections->header = registrations.header;
@@ -189,13 +208,15 @@ private:
     for (const BrickPoseEstimate& estimate : estimates) observations.push_back({estimate.type_name, estimate.pose});
     const std::vector<TrackedBrick> tracked = tracker_.update(observations, registrations.header.stamp.toSec());
     for (std::size_t i = 0; i < estimates.size(); ++i)
-      detections->detections.push_back(makeDetection(estimates[i], *candidates[i], tracked[i], registrations.header));
+      detections->detections.push_back(
+          makeDetection(estimates[i], *candidates[i], tracked[i], sources[i], registrations.header));
     markPickable(*detections);
     return detections;
   }
 
   static BrickDetection makeDetection(const BrickPoseEstimate& estimate, const BrickCandidate& candidate,
-                                      const TrackedBrick& tracked, const std_msgs::Header& header)
+                                      const TrackedBrick& tracked, const std::string& source,
+                                      const std_msgs::Header& header)
   {
     BrickDetection detection;
     detection.type = estimate.type_name;
@@ -208,7 +229,7 @@ private:
     detection.complete_face = candidate.complete;
     detection.partial_reason =
         candidate.complete ? "" : (candidate.partial_reason.empty() ? "top face not wholly in view" : candidate.partial_reason);
-    detection.pose_source = "registered";
+    detection.pose_source = source;
     detection.registration_pose = tf2::toMsg(estimate.registration.pose);
     detection.refinement = toString(estimate.refinement);
     detection.correction_yaw_deg = estimate.correction.yawDeg();
@@ -356,6 +377,7 @@ private:
   // registrations callback that uses it.
   std::unique_ptr<BrickPoseEstimator> estimator_;
   BrickTracker tracker_;
+  TrackedPoseParams tracked_params_;
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<PoseCorrectionConfig>> reconfigure_;
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;

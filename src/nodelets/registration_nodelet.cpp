@@ -1,7 +1,10 @@
-// brick_pose/Registration: stage 4. Registers each candidate's artificial
-// model (the top face of its catalogue type, origin at its centre) onto the
-// segment with our Super4PCS; publishes the poses on `registrations`,
-// in-process. Each brick has Super4PCS's own budget and the frame has
+// brick_pose/Registration: stage 4. Gives each candidate an initial pose:
+// a brick measured in recent frames (the latest `detections`) continues from
+// its last final pose (the tracked path, with refinement: correction);
+// any other gets our Super4PCS registration of its artificial model (the top
+// face of its catalogue type, origin at its centre) onto the segment.
+// Publishes the poses on `registrations`, in-process. Each Super4PCS search
+// has its own budget and the frame has
 // max_frame_registration_ms, so a pile cannot hold the pipeline up; the
 // candidates a frame's budget skipped go first in the next frame. A
 // candidate Super4PCS cannot register is dropped, counted by reason; the
@@ -11,10 +14,13 @@
 #include <dynamic_reconfigure/server.h>
 #include <pluginlib/class_list_macros.hpp>
 
+#include "brick_pose/BrickDetectionArray.h"
 #include "brick_pose/RegistrationConfig.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/pipeline/pipeline_config.h"
 #include "brick_pose/pose/registration_order.h"
+#include "brick_pose/pose/tracked_pose.h"
+#include "brick_pose/ros/conversions.h"
 #include "brick_pose/ros/stage_nodelet.h"
 
 namespace brick_pose
@@ -30,7 +36,9 @@ private:
     catalogue_ = catalogueFrom(lookup);
     estimator_ = std::make_unique<BrickPoseEstimator>(catalogue_, estimatorParamsFrom(lookup));
     budget_ = registrationStageParamsFrom(lookup);
+    previous_poses_ = PreviousPoses(trackedPoseParamsFrom(lookup));
     const int queue_size = stageParams().queue_size;
+    detections_subscriber_ = node().subscribe("detections", 1, &RegistrationNodelet::onDetections, this);
     registrations_publisher_ = node().advertise<RegistrationsMessage>("registrations", queue_size);
     candidates_subscriber_ = node().subscribe("candidates", queue_size, &RegistrationNodelet::onCandidates, this);
     startReconfigure();
@@ -70,6 +78,19 @@ private:
     }
   }
 
+  /// The latest final poses, for the tracked path (only the correction
+  /// refines a tracked pose: with ICP or none it would never change).
+  void onDetections(const BrickDetectionArrayConstPtr& detections)
+  {
+    std::vector<PreviousPose> poses;
+    if (estimator_->params().refinement == RefinementMethod::kCorrection)
+      for (const BrickDetection& detection : detections->detections)
+        poses.push_back({detection.type, detection.id, ros_conversions::fromPose(detection.pose.pose),
+                         Eigen::Vector3d(detection.dimensions.x, detection.dimensions.y, detection.dimensions.z),
+                         detection.fitness});
+    previous_poses_.update(std::move(poses));
+  }
+
   void onCandidates(const CandidatesMessageConstPtr& candidates)
   {
     frameIn();
@@ -80,7 +101,20 @@ private:
     message->header = candidates->header;
     message->candidates = candidates;
     const auto& list = candidates->front_end.candidates;
-    const std::vector<std::size_t> order = order_.order(list);
+    // Tracked bricks cost nothing here; the rest share the frame's budget.
+    std::vector<BrickCandidate> searched;
+    std::vector<std::size_t> searched_index;
+    for (std::size_t i = 0; i < list.size(); ++i)
+    {
+      if (const std::optional<PreviousPose> previous = previous_poses_.match(list[i]))
+      {
+        message->registered.push_back({i, registrationFromPrevious(*previous), true});
+        continue;
+      }
+      searched.push_back(list[i]);
+      searched_index.push_back(i);
+    }
+    const std::vector<std::size_t> order = order_.order(searched);
     std::size_t skipped = 0;
     for (std::size_t rank = 0; rank < order.size(); ++rank)
     {
@@ -90,13 +124,13 @@ private:
         skipped = order.size() - rank;
         break;
       }
-      registerOne(frame, list[order[rank]], order[rank], *message);
+      registerOne(frame, searched[order[rank]], searched_index[order[rank]], *message);
     }
     if (skipped > 0)
     {
       itemDropped("skipped for the frame budget (first in the next frame)", static_cast<int>(skipped));
       NODELET_DEBUG("%s: %zu of %zu candidates skipped after %.0f ms (max_frame_registration_ms %.0f); "
-                    "they go first in the next frame", frameLabel(frame).c_str(), skipped, list.size(),
+                    "they go first in the next frame", frameLabel(frame).c_str(), skipped, searched.size(),
                     (ros::WallTime::now() - start).toSec() * 1e3, budget_.max_frame_registration_ms);
     }
     itemsProcessed(static_cast<int>(list.size()), static_cast<int>(message->registered.size()));
@@ -111,7 +145,7 @@ private:
     order_.attempted(candidate);
     try
     {
-      message.registered.push_back({index, estimator_->registerCandidate(candidate)});
+      message.registered.push_back({index, estimator_->registerCandidate(candidate), false});
     }
     catch (const InputError& e)
     {
@@ -124,12 +158,14 @@ private:
   BrickCatalogue catalogue_;
   RegistrationStageParams budget_;
   RegistrationOrder order_;
+  PreviousPoses previous_poses_;
   // Replaced whole on reconfigure; the subscriber and the reconfigure server
   // share the nodelet's single-threaded queue, so no lock is needed.
   std::unique_ptr<BrickPoseEstimator> estimator_;
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<RegistrationConfig>> reconfigure_;
   ros::Subscriber candidates_subscriber_;
+  ros::Subscriber detections_subscriber_;
   ros::Publisher registrations_publisher_;
 };
 }  // namespace brick_pose

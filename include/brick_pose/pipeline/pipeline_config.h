@@ -13,6 +13,7 @@
 #include "brick_pose/common/param_parsing.h"
 #include "brick_pose/pose/brick_pose_estimator.h"
 #include "brick_pose/pose/brick_tracker.h"
+#include "brick_pose/pose/tracked_pose.h"
 #include "brick_pose/pipeline/front_end.h"
 
 namespace brick_pose
@@ -45,6 +46,9 @@ struct RegistrationStageParams
 /// `track_match_distance_m`, `track_match_angle_deg`, `track_forget_after_s`,
 /// `pose_smoothing_weight` (1: off).
 BrickTrackerParams trackerParamsFrom(const ParamLookup& lookup);
+
+/// `track_poses` (the tracked path), `moved_translation_m`, `moved_rotation_deg`.
+TrackedPoseParams trackedPoseParamsFrom(const ParamLookup& lookup);
 
 /// `max_latency_ms`, `queue_size`, `report_period_s`.
 StageParams stageParamsFrom(const ParamLookup& lookup);

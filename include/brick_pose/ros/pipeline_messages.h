@@ -64,6 +64,9 @@ struct RegisteredCandidate
 {
   std::size_t candidate_index = 0;  ///< into candidates->front_end.candidates
   BrickRegistration registration;
+  /// The registration is the brick's last final pose (the tracked path),
+  /// not a Super4PCS search.
+  bool tracked = false;
 };
 
 struct RegistrationsMessage

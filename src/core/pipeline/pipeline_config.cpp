@@ -70,6 +70,17 @@ BrickTrackerParams trackerParamsFrom(const ParamLookup& lookup)
   return params;
 }
 
+TrackedPoseParams trackedPoseParamsFrom(const ParamLookup& lookup)
+{
+  const ParamReader read(lookup);
+  TrackedPoseParams params;
+  read.flag("track_poses", params.enabled);
+  read.number("moved_translation_m", params.moved_translation_m);
+  read.number("moved_rotation_deg", params.moved_rotation_deg);
+  params.validate();
+  return params;
+}
+
 BrickCatalogue catalogueFrom(const ParamLookup& lookup)
 {
   const auto path = lookup("catalogue_path");
@@ -135,6 +146,7 @@ std::map<std::string, std::string> pipelineParamsInEffect(const ParamLookup& loo
   const StageParams stage = stageParamsFrom(lookup);
   const RegistrationStageParams registration = registrationStageParamsFrom(lookup);
   const BrickTrackerParams tracker = trackerParamsFrom(lookup);
+  const TrackedPoseParams tracked = trackedPoseParamsFrom(lookup);
   return {
       {"mode", toString(front_end.mode)},
       {"min_area_px", text(front_end.hsv.min_area_px)},
@@ -165,6 +177,9 @@ std::map<std::string, std::string> pipelineParamsInEffect(const ParamLookup& loo
       {"track_match_angle_deg", text(tracker.match_angle_deg)},
       {"track_forget_after_s", text(tracker.forget_after_s)},
       {"pose_smoothing_weight", text(tracker.smoothing_weight)},
+      {"track_poses", text(tracked.enabled)},
+      {"moved_translation_m", text(tracked.moved_translation_m)},
+      {"moved_rotation_deg", text(tracked.moved_rotation_deg)},
   };
 }
 }  // namespace brick_pose
