@@ -23,6 +23,9 @@ struct PointToPlaneParams
   double max_normal_difference_deg = 30.0;
   int iterations = 6;
   double min_step_m = 1e-5;  ///< convergence: translation of one step
+  /// Pairs farther off the plane than 3 robust standard deviations, and
+  /// than this, are left out of each step.
+  double min_trim_offset_m = 0.004;
 };
 
 /// The refined model -> target transform. `model_grid` indexes model.points

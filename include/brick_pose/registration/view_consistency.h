@@ -43,9 +43,6 @@ struct ViewConsistencyParams
   /// A model point in front of an observed scan point by more than this
   /// violates free space (depth noise and flying pixels stay below it).
   double free_space_margin_m = 0.02;
-  /// Reach of the model index that fitGrid() offers for local fits
-  /// (at least match_radius_m).
-  double fit_radius_m = 0.03;
 };
 
 class ViewConsistency
@@ -78,8 +75,6 @@ public:
   /// The scan points used (the coverage denominators).
   const std::vector<int>& trustedTargetPoints() const { return trusted_; }
   const PointGrid& modelGrid() const { return model_grid_; }
-  /// The model indexed for queries up to fit_radius_m.
-  const PointGrid& fitGrid() const { return fit_grid_; }
   const PointSet& model() const { return model_; }
   const PointSet& target() const { return target_; }
   const ViewConsistencyParams& params() const { return params_; }
@@ -97,7 +92,6 @@ private:
   std::vector<int> trusted_;
   std::vector<Eigen::Vector3d> trusted_points_;
   PointGrid model_grid_;
-  PointGrid fit_grid_;
   PointGrid target_grid_;  // over all target points: seen is seen
   // Lines of sight: every target point projected onto the plane at unit
   // distance along the mean viewing direction, in a grid of angular cells.

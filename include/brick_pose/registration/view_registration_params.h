@@ -54,11 +54,11 @@ struct ViewRegistrationParams
   double min_sight_cos = 0.15;
   /// Acceptance: all must hold for success.
   double min_target_coverage = 0.8;
-  double min_model_coverage = 0.7;
+  double min_model_coverage = 0.75;
   double max_free_space_violation = 0.1;
   /// Margin of the best pose's combined view score over the best pose that
   /// is not the same up to a true symmetry of the model (the confidence).
-  double min_confidence = 0.1;
+  double min_confidence = 0.08;
   /// A new best candidate of the search whose quick target coverage reaches
   /// this is fitted and checked in full; the search stops when it passes the
   /// acceptance (a pose that covers the scan but fails the view checks does

@@ -1,8 +1,7 @@
 #include "brick_pose/registration/point_to_plane_icp.h"
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
+#include <algorithm>
 #include <limits>
 
 #include "brick_pose/registration/rigid_fit.h"
@@ -11,6 +10,12 @@ namespace brick_pose
 {
 namespace registration
 {
+namespace
+{
+constexpr double kTrimSigmas = 3.0;
+constexpr double kMadToSigma = 1.4826;
+}  // namespace
+
 Eigen::Isometry3d refinePointToPlane(const PointSet& model, const PointGrid& model_grid, const PointSet& target,
                                      const std::vector<int>& target_indices, const Eigen::Isometry3d& model_to_target,
                                      const PointToPlaneParams& params)
@@ -40,34 +45,56 @@ Eigen::Isometry3d refinePointToPlane(const PointSet& model, const PointGrid& mod
         }
       });
       if (best >= 0)
-      {
         pairs.emplace_back(t, best);
-        centre += pose * model.points[best];
-      }
     }
     if (pairs.size() < 6)
       break;
-    centre /= static_cast<double>(pairs.size());
+    // Trimmed: pairs whose offset from the plane exceeds a few robust
+    // standard deviations (from the median absolute offset) do not pull. A
+    // scan holds points a plane fit must not follow: grazing strips of a face
+    // seen edge-on, flying pixels behind a silhouette.
+    std::vector<double> residuals(pairs.size());
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+    {
+      const auto [t, m] = pairs[k];
+      residuals[k] = (pose.linear() * model.normals[m]).dot(target.points[t] - pose * model.points[m]);
+    }
+    std::vector<double> magnitudes(residuals.size());
+    for (std::size_t k = 0; k < residuals.size(); ++k)
+      magnitudes[k] = std::abs(residuals[k]);
+    std::nth_element(magnitudes.begin(), magnitudes.begin() + magnitudes.size() / 2, magnitudes.end());
+    const double max_offset_m =
+        std::max(params.min_trim_offset_m, kTrimSigmas * kMadToSigma * magnitudes[magnitudes.size() / 2]);
+    centre = Eigen::Vector3d::Zero();
+    int used = 0;
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+      if (std::abs(residuals[k]) <= max_offset_m)
+      {
+        centre += pose * model.points[pairs[k].second];
+        ++used;
+      }
+    if (used < 6)
+      break;
+    centre /= static_cast<double>(used);
     // The model moves by a small step (dt, dw) about `centre` in the target
     // frame; each pair's residual is the target point's offset along the
     // moved model normal.
-    for (const auto& [t, m] : pairs)
+    for (std::size_t k = 0; k < pairs.size(); ++k)
     {
+      if (std::abs(residuals[k]) > max_offset_m)
+        continue;
+      const int m = pairs[k].second;
       const Eigen::Vector3d point = pose * model.points[m];
       const Eigen::Vector3d normal = pose.linear() * model.normals[m];
       Eigen::Matrix<double, 6, 1> jacobian;
       jacobian << normal, (point - centre).cross(normal);
-      const double residual = normal.dot(target.points[t] - point);
       lhs += jacobian * jacobian.transpose();
-      rhs += jacobian * residual;
+      rhs += jacobian * residuals[k];
     }
     const std::optional<Eigen::Isometry3d> step = solveRigidStep(lhs, rhs, centre);
     if (!step)
       break;
     pose = *step * pose;
-    if (std::getenv("BP_ICP_DEBUG"))
-      std::fprintf(stderr, "ICP it %d pairs %zu/%zu step t %.4f r %.4f\n", iteration, pairs.size(), target_indices.size(),
-                   step->translation().norm(), Eigen::AngleAxisd(step->linear()).angle());
     if (step->translation().norm() < params.min_step_m && Eigen::AngleAxisd(step->linear()).angle() < 1e-6)
       break;
   }

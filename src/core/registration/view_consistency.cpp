@@ -44,8 +44,7 @@ ViewConsistency::ViewConsistency(const PointSet& model, const PointSet& model_sa
     params_(params),
     min_normal_cos_(std::cos(params.max_normal_difference_deg * kDegToRad)),
     trusted_(std::move(trusted)),
-    model_grid_(model.points, params.match_radius_m),
-    fit_grid_(model.points, std::max(params.fit_radius_m, params.match_radius_m))
+    model_grid_(model.points, params.match_radius_m)
 {
   for (int i : trusted_)
     trusted_points_.push_back(target.points[i]);

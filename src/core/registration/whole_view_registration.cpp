@@ -5,8 +5,6 @@
 #include <limits>
 #include <optional>
 #include <random>
-#include <cstdio>
-#include <cstdlib>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
@@ -50,18 +48,23 @@ constexpr double kMinSpanFraction = 0.1;
 // close second).
 constexpr double kMinHypothesisCoverage = 0.3;
 constexpr double kHypothesisCoverageWindow = 0.25;
-// Two poses are one hypothesis when this close (modulo true symmetries).
+// Two poses are one hypothesis when this close (modulo true symmetries). The
+// offset is about the success tolerance (10 mm): a pose slid further along a
+// face that ends out of view is a hypothesis of its own, and when it scores
+// nearly as well the registration cannot claim that precision.
 constexpr double kSameHypothesisDeg = 10.0;
-constexpr double kSameHypothesisOffsetPerDiameter = 0.1;
+constexpr double kSameHypothesisOffsetM = 0.012;
 // Point-to-plane fit of each hypothesis: reach over the match radius.
 constexpr double kHypothesisFitRadiusPerMatchRadius = 3.0;
 constexpr int kHypothesisFitIterations = 8;
+constexpr std::size_t kFitScanPoints = 300;
 // The polished pose is kept unless its combined score drops by more.
 constexpr double kMaxScoreDropByPolish = 0.03;
 // Model faces turned towards the viewpoint by more than this take part in the
 // polish: a grazing face has next to no scan points, and its boundary, unmatched
 // in the scan, would only hide the fold edge the scan does show.
 constexpr double kPolishVisibleCos = 0.2;
+constexpr double kPolishReachPerPairTolerance = 2.5;
 constexpr int kClockStride = 32;
 
 std::string formatScore(double value)
@@ -282,18 +285,72 @@ private:
   std::vector<Hypothesis> list_;
 };
 
+/// The pose slid along each box axis on which the scan is shorter than the
+/// model, so that one end of the scan meets the model's end: a face whose end
+/// is out of view (or grazing) leaves the position along it to the few
+/// boundary points, and the 4-point pose may be off by more than the local
+/// fits reach.
+std::vector<Eigen::Isometry3d> slidAlternatives(const Eigen::Isometry3d& pose, const ViewInput& input,
+                                                const ModelSymmetries& symmetries)
+{
+  std::vector<Eigen::Isometry3d> slid;
+  if (!symmetries.box_like || input.trusted.empty())
+    return slid;
+  const Eigen::Isometry3d target_to_model = pose.inverse();
+  Eigen::Vector3d lower = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d upper = -lower;
+  for (int i : input.trusted)
+  {
+    const Eigen::Vector3d local =
+        symmetries.axes.transpose() * (target_to_model * input.scan.points[i] - symmetries.centre_m);
+    lower = lower.cwiseMin(local);
+    upper = upper.cwiseMax(local);
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const double half = symmetries.half_extents_m(axis);
+    for (const double shift : {lower(axis) + half, upper(axis) - half})
+    {
+      if (std::abs(shift) <= input.match_radius_m)
+        continue;
+      Eigen::Isometry3d moved = pose;
+      moved.translation() += pose.linear() * (shift * symmetries.axes.col(axis));
+      slid.push_back(moved);
+    }
+  }
+  return slid;
+}
+
+/// What the local fit of a hypothesis works on: the model sample (as dense
+/// as the scan's bases; a plane needs no more) indexed for the fit's reach,
+/// and about kFitScanPoints trusted scan points spread over the scan.
+struct FitContext
+{
+  FitContext(const ViewInput& input, double radius_m)
+    : model(input.model_sample), grid(input.model_sample.points, radius_m), radius_m(radius_m)
+  {
+    const std::size_t stride = std::max<std::size_t>(1, input.trusted.size() / kFitScanPoints);
+    for (std::size_t k = 0; k < input.trusted.size(); k += stride)
+      scan_points.push_back(input.trusted[k]);
+  }
+
+  const PointSet& model;
+  PointGrid grid;
+  double radius_m;
+  std::vector<int> scan_points;
+};
+
 /// Gives a hypothesis its best local fit and its full view score.
-Hypothesis fitAndScore(const Eigen::Isometry3d& pose, const ViewInput& input, const ViewConsistency& consistency,
-                       const Super4PCSParams& params)
+Hypothesis fitAndScore(const Eigen::Isometry3d& pose, const FitContext& context, const ViewInput& input,
+                       const ViewConsistency& consistency, const Super4PCSParams& params)
 {
   PointToPlaneParams fit;
-  fit.radius_m = kHypothesisFitRadiusPerMatchRadius * input.match_radius_m;
+  fit.radius_m = context.radius_m;
   fit.max_normal_difference_deg = params.view.max_normal_difference_deg;
   fit.iterations = kHypothesisFitIterations;
   fit.min_step_m = 0.02 * params.delta_m;
   Hypothesis hypothesis;
-  hypothesis.pose = refinePointToPlane(consistency.model(), consistency.fitGrid(), consistency.target(),
-                                       consistency.trustedTargetPoints(), pose, fit);
+  hypothesis.pose = refinePointToPlane(context.model, context.grid, input.scan, context.scan_points, pose, fit);
   hypothesis.view = consistency.evaluate(hypothesis.pose);
   hypothesis.view_evaluated = true;
   hypothesis.target_coverage = hypothesis.view.target_coverage;
@@ -303,7 +360,7 @@ Hypothesis fitAndScore(const Eigen::Isometry3d& pose, const ViewInput& input, co
 /// Draws bases from the scan and verifies their congruent sets in the model
 /// until a pose passes the view acceptance with a high scan coverage, or the
 /// work or time budget is spent.
-std::string searchHypotheses(const ViewInput& input, const ViewConsistency& consistency,
+std::string searchHypotheses(const ViewInput& input, const ViewConsistency& consistency, const FitContext& fit_context,
                              const Super4PCSParams& params, SteadyClock::time_point start, std::mt19937_64& rng,
                              HypothesisList& hypotheses, RegistrationResult& result)
 {
@@ -382,7 +439,7 @@ std::string searchHypotheses(const ViewInput& input, const ViewConsistency& cons
         return true;
       Hypothesis& hypothesis = hypotheses.at(kept);
       const double quick_coverage = hypothesis.target_coverage;
-      hypothesis = fitAndScore(pose, input, consistency, params);
+      hypothesis = fitAndScore(pose, fit_context, input, consistency, params);
       hypothesis.target_coverage = std::max(quick_coverage, hypothesis.target_coverage);
       if (passesAcceptance(hypothesis.view, view))
       {
@@ -423,7 +480,7 @@ Eigen::Isometry3d anchoredAtNearCorner(const Eigen::Isometry3d& pose, const Eige
 
 /// The polish of the face mode with the model's faces turned towards the
 /// viewpoint as the source.
-Eigen::Isometry3d polishOnVisibleFaces(const ViewInput& input, const PointSet& target, const Eigen::Isometry3d& pose,
+Eigen::Isometry3d polishOnVisibleFaces(const ViewInput& input, const Eigen::Isometry3d& pose,
                                        const Super4PCSParams& params, SteadyClock::time_point start,
                                        std::mt19937_64& rng)
 {
@@ -437,11 +494,28 @@ Eigen::Isometry3d polishOnVisibleFaces(const ViewInput& input, const PointSet& t
   if (facing.size() < 4)
     return pose;
   const PointSet visible = input.model.subset(facing);
+  // The scan without what faces away from the viewpoint (grazing strips and
+  // flying-pixel curtains, which the polish's trimming does not always keep
+  // out); edges stay, the boundary stage needs them.
+  std::vector<int> kept;
+  for (std::size_t i = 0; i < input.scan.size(); ++i)
+  {
+    const Eigen::Vector3d sight = (params.view.viewpoint_m - input.scan.points[i]).normalized();
+    if (input.scan.normals[i].dot(sight) >= params.view.min_sight_cos)
+      kept.push_back(static_cast<int>(i));
+  }
+  if (kept.size() < 4)
+    return pose;
+  PointSet polish_target = input.scan.subset(kept);
+  polish_target.normals.clear();
   SearchScales scales;
-  scales.pair_tolerance_m = input.pair_tolerance_m;
+  // The hypothesis fit leaves the in-plane pose of a single face as loose as
+  // the 4-point pose (a few pair tolerances at its far ends): the polish must
+  // reach that far.
+  scales.pair_tolerance_m = kPolishReachPerPairTolerance * input.pair_tolerance_m;
   scales.lcp_radius_m = input.match_radius_m;
   scales.source_diameter_m = approximateDiameter(visible.points, rng);
-  return polishWithIcp(visible, target, pose, scales, params, start, rng);
+  return polishWithIcp(visible, polish_target, pose, scales, params, start, rng);
 }
 }  // namespace
 
@@ -491,20 +565,14 @@ RegistrationResult alignWholeView(const PointSet& source, const PointSet& target
   check.max_normal_difference_deg = view.max_normal_difference_deg;
   check.min_visible_cos = view.min_visible_cos;
   check.free_space_margin_m = view.free_space_margin_m;
-  check.fit_radius_m = kHypothesisFitRadiusPerMatchRadius * input.match_radius_m;
   const ViewConsistency consistency(input.model, input.model_probe, input.scan, input.trusted, check);
   const ModelSymmetries symmetries =
       findModelSymmetries(input.model, consistency.modelGrid(), input.model_probe, input.match_radius_m);
-  if (std::getenv("BP_VIEW_DEBUG"))
-    std::fprintf(stderr, "DEBUG scan %zu trusted %zu base %zu span %d match_r %.4f pair_tol %.4f model %zu sample %zu sym %zu alt %zu\n",
-                 input.scan.size(), input.trusted.size(), input.base_cloud.size(), input.bases_span_faces ? 1 : 0,
-                 input.match_radius_m, input.pair_tolerance_m, input.model.size(), input.model_sample.size(),
-                 symmetries.symmetries.size(), symmetries.alternatives.size());
 
   const double search_cpu_start_s = threadCpuSeconds();
-  HypothesisList hypotheses(view.kept_hypotheses, symmetries,
-                            kSameHypothesisOffsetPerDiameter * std::max(input.model_diameter_m, 1e-6));
-  result.reason = searchHypotheses(input, consistency, params, start, rng, hypotheses, result);
+  HypothesisList hypotheses(view.kept_hypotheses, symmetries, kSameHypothesisOffsetM);
+  const FitContext fit_context(input, kHypothesisFitRadiusPerMatchRadius * input.match_radius_m);
+  result.reason = searchHypotheses(input, consistency, fit_context, params, start, rng, hypotheses, result);
   result.search_cpu_s = threadCpuSeconds() - search_cpu_start_s;
   if (hypotheses.all().empty())
   {
@@ -519,26 +587,28 @@ RegistrationResult alignWholeView(const PointSet& source, const PointSet& target
   // scored alike.
   std::vector<Hypothesis> scored;
   for (const Hypothesis& hypothesis : hypotheses.all())
-    scored.push_back(fitAndScore(hypothesis.pose, input, consistency, params));
+    scored.push_back(fitAndScore(hypothesis.pose, fit_context, input, consistency, params));
   auto by_score = [](const Hypothesis& a, const Hypothesis& b) { return a.view.combined() > b.view.combined(); };
   std::stable_sort(scored.begin(), scored.end(), by_score);
   const Eigen::Isometry3d leader = scored.front().pose;
+  std::vector<Eigen::Isometry3d> alternatives = slidAlternatives(leader, input, symmetries);
   for (const Eigen::Isometry3d& alternative : symmetries.alternatives)
   {
     const Eigen::Isometry3d turned = leader * alternative;
-    scored.push_back(fitAndScore(turned, input, consistency, params));
-    scored.push_back(
-        fitAndScore(anchoredAtNearCorner(turned, leader, symmetries, view.viewpoint_m), input, consistency, params));
+    alternatives.push_back(turned);
+    alternatives.push_back(anchoredAtNearCorner(turned, leader, symmetries, view.viewpoint_m));
   }
+  for (const Eigen::Isometry3d& alternative : alternatives)
+    scored.push_back(fitAndScore(alternative, fit_context, input, consistency, params));
+  // The alternatives' own slides: a near-symmetric pose of a box whose
+  // dimensions differ sits best against one end of the scan.
   std::stable_sort(scored.begin(), scored.end(), by_score);
-  if (std::getenv("BP_VIEW_DEBUG"))
-    for (const Hypothesis& h : scored)
-      std::fprintf(stderr, "DEBUG hyp t=(%.3f %.3f %.3f) ct %.3f cm %.3f fv %.3f comb %.3f\n", h.pose.translation().x(),
-                   h.pose.translation().y(), h.pose.translation().z(), h.view.target_coverage, h.view.model_coverage,
-                   h.view.free_space_violation, h.view.combined());
+  for (const Eigen::Isometry3d& alternative : slidAlternatives(scored.front().pose, input, symmetries))
+    scored.push_back(fitAndScore(alternative, fit_context, input, consistency, params));
+  std::stable_sort(scored.begin(), scored.end(), by_score);
   Hypothesis best = scored.front();
   double second_best = 0.0;
-  const double same_offset_m = kSameHypothesisOffsetPerDiameter * std::max(input.model_diameter_m, 1e-6);
+  const double same_offset_m = kSameHypothesisOffsetM;
   for (std::size_t i = 1; i < scored.size(); ++i)
     if (!samePoseModuloSymmetry(best.pose, scored[i].pose, symmetries, kSameHypothesisDeg, same_offset_m))
     {
@@ -549,7 +619,7 @@ RegistrationResult alignWholeView(const PointSet& source, const PointSet& target
   if (params.refine_iterations > 0)
   {
     const Eigen::Isometry3d polished =
-        polishOnVisibleFaces(input, target, best.pose, params, start, rng);
+        polishOnVisibleFaces(input, best.pose, params, start, rng);
     const ViewScore polished_score = consistency.evaluate(polished);
     if (polished_score.combined() >= best.view.combined() - kMaxScoreDropByPolish)
     {
