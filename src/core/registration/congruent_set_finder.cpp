@@ -62,8 +62,12 @@ bool CongruentSetFinder::normalsAgree(int p, int q, const PairNormalRanges& rang
   const Eigen::Vector3d segment = (target_.points[q] - target_.points[p]).normalized();
   const double cosines[3] = {np.dot(nq), np.dot(segment), nq.dot(segment)};
   for (int k = 0; k < 3; ++k)
-    if (!(cosines[k] >= ranges.min_cos[k] && cosines[k] <= ranges.max_cos[k]))
+  {
+    // Round-off puts the dot product of equal unit normals just above 1.
+    const double cosine = std::clamp(cosines[k], -1.0, 1.0);
+    if (!(cosine >= ranges.min_cos[k] && cosine <= ranges.max_cos[k]))
       return false;
+  }
   return true;
 }
 
