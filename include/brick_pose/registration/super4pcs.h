@@ -18,6 +18,7 @@
 
 #include "brick_pose/registration/point_set.h"
 #include "brick_pose/registration/registration_result.h"
+#include "brick_pose/registration/view_registration_params.h"
 
 namespace brick_pose
 {
@@ -72,6 +73,9 @@ struct Super4PCSParams
   int fine_refine_source_sample_size = 4000;
   /// Same seed and inputs => same result (unless the time budget cuts in).
   std::uint64_t seed = 1;
+  /// Whole-object views (whole_view_registration.h); off by default: the
+  /// face registration of the pipeline.
+  ViewRegistrationParams view;
 
   /// Throws ConfigError naming the first unusable field.
   void validate() const;
