@@ -202,7 +202,11 @@ private:
   {
     auto detections = boost::make_shared<BrickDetectionArray>();
     detections->header = registrations.header;
-    detections->frontend_ms = registrations.candidates->front_end.timings.total_ms;
+    const FrontEndTimings& timings = registrations.candidates->front_end.timings;
+    detections->frontend_ms = timings.total_ms;
+    detections->segmentation_ms = timings.segmentation_ms;
+    detections->cloud_ms = timings.cloud.total();
+    detections->roi_ms = timings.roi_ms;
     detections->registration_ms = registrations.registration_ms;
     std::vector<TrackerObservation> observations;
     for (const BrickPoseEstimate& estimate : estimates) observations.push_back({estimate.type_name, estimate.pose});

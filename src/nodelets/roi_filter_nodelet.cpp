@@ -14,7 +14,7 @@
 
 #include "brick_pose/common/errors.h"
 #include "brick_pose/pipeline/pipeline_config.h"
-#include "brick_pose/roi/candidate_overlay.h"
+#include "brick_pose/pipeline/candidate_overlay.h"
 #include "brick_pose/ros/stage_nodelet.h"
 
 namespace brick_pose
