@@ -1,0 +1,78 @@
+#include "bench_frontend/mosd_evaluation.h"
+
+#include "brick_pose/common/errors.h"
+#include "brick_pose/eval/mosd_catalogue.h"
+#include "brick_pose/eval/mosd_scene.h"
+#include "brick_pose/eval/mosd_truth.h"
+#include "common/run_environment.h"
+
+namespace brick_pose
+{
+namespace frontend_bench
+{
+MosdResults runMosd(const std::vector<ModeSpec>& modes, const Options& options)
+{
+  MosdResults results;
+  results.modes.resize(modes.size());
+  results.modes_without_up.resize(modes.size());
+  if (options.skip_mosd)
+  {
+    results.skipped_reason = "--no-mosd";
+    return results;
+  }
+  const std::string directory =
+      options.mosd_dir.empty() ? eval::mosdLearnDirectory(bench::sourceDirectory()) : options.mosd_dir;
+  results.catalogue_path =
+      options.mosd_catalogue.empty() ? eval::mosdCataloguePath(bench::sourceDirectory()) : options.mosd_catalogue;
+  const std::vector<std::string> names = eval::mosdSceneNames(directory);
+  if (names.empty())
+  {
+    results.skipped_reason = "no scenes in " + directory;
+    return results;
+  }
+  BrickCatalogue catalogue;
+  try
+  {
+    catalogue = BrickCatalogue::fromYamlFile(results.catalogue_path);
+  }
+  catch (const ConfigError& error)
+  {
+    results.skipped_reason = error.what();
+    return results;
+  }
+  results.catalogue_types = catalogue.types().size();
+
+  // Truth first (it does not depend on the mode), then mode by mode.
+  std::vector<eval::MosdScene> scenes;
+  std::vector<eval::MosdTruth> truths;
+  for (const std::string& name : names)
+  {
+    scenes.push_back(eval::loadMosdScene(directory, name));
+    truths.push_back(eval::extractMosdTruth(scenes.back()));
+  }
+  const eval::MatchParams match_params;
+  for (std::size_t m = 0; m < modes.size(); ++m)
+  {
+    if (!modes[m].mode) continue;
+    for (const bool with_up : {true, false})
+    {
+      if (!with_up && !modes[m].colour_free) continue;
+      for (std::size_t s = 0; s < scenes.size(); ++s)
+      {
+        const FrontEnd front_end(catalogue,
+                                 frontEndParamsFor(modes[m], with_up ? truths[s].up : Eigen::Vector3d::Zero()));
+        const double cpu_start = bench::processCpuMs();
+        const FrontEndResult result = front_end.process(scenes[s].frame);
+        const double cpu_ms = bench::processCpuMs() - cpu_start;
+        recordFrame(result, cpu_ms, truths[s].scene, scenes[s].frame.camera, match_params, options.verbose,
+                    "mosd " + scenes[s].name + " " + modes[m].name + (with_up ? "" : " without up"),
+                    with_up ? results.modes[m] : results.modes_without_up[m]);
+      }
+    }
+  }
+  results.ran = true;
+  results.scenes = static_cast<int>(scenes.size());
+  return results;
+}
+}  // namespace frontend_bench
+}  // namespace brick_pose
