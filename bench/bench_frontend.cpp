@@ -2,7 +2,8 @@
 // filtration) against ground truth: the synthetic D415 rig per scene class,
 // mode and resolution, and the real mOSD Kinect scenes.
 //
-//   bench_frontend [--frames N] [--seed S] [--mosd DIR] [--mosd-catalogue FILE] [--no-mosd] [--verbose]
+//   bench_frontend [--frames N] [--seed S] [--mosd DIR] [--mosd-catalogue FILE] [--no-mosd] [--no-rig]
+//                  [--verbose] [--overlay-dir DIR]
 //
 // First the earlier benchmark's block, figures unchanged in meaning: N
 // frames cycling through single bricks, organised and unorganised piles and
@@ -19,7 +20,8 @@
 // 848x480 and 640x480, plus the mOSD rows, scored by the eval library
 // (include/brick_pose/eval): recall of whole top faces, precision, false
 // complete faces and what they were, pose errors, front-end time. Prints
-// the tables, then one JSON line (scripts/bench.sh collects it).
+// the tables, then one JSON line (scripts/bench.sh collects it). With
+// --overlay-dir, each mOSD scene's candidates as judged are drawn to PNGs.
 
 #include <cstdio>
 

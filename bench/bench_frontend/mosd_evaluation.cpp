@@ -1,6 +1,9 @@
 #include "bench_frontend/mosd_evaluation.h"
 
+#include <opencv2/imgcodecs.hpp>
+
 #include "brick_pose/common/errors.h"
+#include "brick_pose/eval/match_overlay.h"
 #include "brick_pose/eval/mosd_catalogue.h"
 #include "brick_pose/eval/mosd_scene.h"
 #include "brick_pose/eval/mosd_truth.h"
@@ -64,9 +67,17 @@ MosdResults runMosd(const std::vector<ModeSpec>& modes, const Options& options)
         const double cpu_start = bench::processCpuMs();
         const FrontEndResult result = front_end.process(scenes[s].frame);
         const double cpu_ms = bench::processCpuMs() - cpu_start;
+        const std::string row = modes[m].name + (with_up ? "" : "_no_up");
         recordFrame(result, cpu_ms, truths[s].scene, scenes[s].frame.camera, match_params, options.verbose,
-                    "mosd " + scenes[s].name + " " + modes[m].name + (with_up ? "" : " without up"),
-                    with_up ? results.modes[m] : results.modes_without_up[m]);
+                    "mosd " + scenes[s].name + " " + row, with_up ? results.modes[m] : results.modes_without_up[m]);
+        if (!options.overlay_dir.empty())
+        {
+          const eval::FrameMatch match =
+              eval::matchCandidates(result.candidates, truths[s].scene, scenes[s].frame.camera, match_params);
+          cv::imwrite(options.overlay_dir + "/" + scenes[s].name + "_" + row + ".png",
+                      eval::drawMatchOverlay(scenes[s].frame.rgb, truths[s].scene, result.candidates, match,
+                                             scenes[s].frame.camera));
+        }
       }
     }
   }

@@ -148,7 +148,7 @@ void printTables(const RunInfo& run, const RigResults& rig, const MosdResults& m
 {
   std::printf("\n== Front end per scene class x mode x resolution (issue 10)\n\n");
   std::printf("Rig: %zu frames planned per mode and resolution (the %d legacy frames, then %d per further class). "
-              "Whole tops: top faces whole in view (>= 99%% visible, inside the image); recall counts a candidate "
+              "Whole tops: top faces whole in view (>= 99%% of the face in the image and unhidden); recall counts a candidate "
               "holding >= 70%% of one. False complete: candidates marked complete that are not a whole top of their "
               "type. Errors on the whole tops found: face-frame rotation (mod the half turn), centre, |length|/|width|.\n\n",
               run.planned_frames, run.options.frames, std::max(1, run.options.frames / 4));
@@ -256,7 +256,7 @@ std::string jsonLine(const RunInfo& run, const RigResults& rig, const MosdResult
   for (const CellStats& stats : mosd.modes) mosd_false_complete += stats.tally.false_complete;
   for (const CellStats& stats : mosd.modes_without_up) mosd_false_complete += stats.tally.false_complete;
   json.number("touching_recall", touching_recall)
-      .number("false_complete", rig_false_complete)
+      .number("false_complete", rig.cells.empty() ? std::nan("") : rig_false_complete)
       .text("colour_free_mode", colour_free ? colour_free->name : "none")
       .number("colour_free_p50_ms_vga", colourFreeP50Ms(run, rig, "640x480"))
       .number("colour_free_p50_ms_720p", colourFreeP50Ms(run, rig, "1280x720"))

@@ -59,11 +59,13 @@ Options parseOptions(int argc, char** argv)
     else if (arg == "--mosd" && has_value) options.mosd_dir = argv[++i];
     else if (arg == "--mosd-catalogue" && has_value) options.mosd_catalogue = argv[++i];
     else if (arg == "--no-mosd") options.skip_mosd = true;
+    else if (arg == "--no-rig") options.skip_rig = true;
     else if (arg == "--verbose") options.verbose = true;
+    else if (arg == "--overlay-dir" && has_value) options.overlay_dir = argv[++i];
     else
     {
       std::cerr << "usage: bench_frontend [--frames N] [--seed S] [--mosd DIR] [--mosd-catalogue FILE] [--no-mosd] "
-                   "[--verbose]\n";
+                   "[--no-rig] [--verbose] [--overlay-dir DIR]\n";
       std::exit(arg == "--help" || arg == "-h" ? 0 : 2);
     }
   }
@@ -132,6 +134,7 @@ std::vector<FrameSpec> framePlan(const std::vector<SceneClass>& classes, const O
   for (std::size_t c = 0; c < classes.size(); ++c)
     if (classes[c].legacy && classes[c].kind) legacy_classes.push_back(c);
   std::vector<FrameSpec> plan;
+  if (options.skip_rig) return plan;
   // The earlier benchmark: singles at i % 4 == 0, 1, organised piles at 2,
   // unorganised at 3; lighting changes every four frames.
   if (legacy_classes.size() == 3)

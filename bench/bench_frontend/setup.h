@@ -32,7 +32,10 @@ struct Options
   std::string mosd_dir;      ///< Empty: test/data/mosd_learn under the source tree.
   std::string mosd_catalogue;  ///< Empty: catalogue.yaml there.
   bool skip_mosd = false;
+  bool skip_rig = false;       ///< Only the real-scene rows (quick look at mOSD).
   bool verbose = false;      ///< Each false positive, false complete and miss on stderr.
+  /// Non-empty: writes <scene>_<mode>.png match overlays of the mOSD rows there.
+  std::string overlay_dir;
 };
 
 /// Throws nothing; prints usage and exits on bad arguments.

@@ -99,14 +99,16 @@ SceneTruth rigSceneTruth(const sim::SyntheticFrame& frame, const Eigen::Vector3d
       face_truth.visible_fraction = brick.visible_fraction;
       face_truth.has_geometry = true;
       face_truth.geometry = topGeometry(brick);
+      // The border and occluders alike: the visible fraction counts both,
+      // with the same tolerance for the face's outermost pixels.
+      char reason[96];
       if (face_truth.role != FaceRole::kTop)
         face_truth.not_whole_reason = "the top face does not face up";
-      else if (!cornersInImage(face_truth.geometry.corners_m, frame.camera))
-        face_truth.not_whole_reason = "cut by the image border";
       else if (brick.visible_fraction < params.whole_min_visible_fraction)
       {
-        char reason[96];
-        std::snprintf(reason, sizeof(reason), "occluded (%.0f%% visible)", 100.0 * brick.visible_fraction);
+        const bool cut = !cornersInImage(face_truth.geometry.corners_m, frame.camera);
+        std::snprintf(reason, sizeof(reason), "%s (%.1f%% visible)", cut ? "cut by the image border" : "occluded",
+                      100.0 * brick.visible_fraction);
         face_truth.not_whole_reason = reason;
       }
       face_truth.whole_in_view = face_truth.not_whole_reason.empty();

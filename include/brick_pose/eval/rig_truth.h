@@ -14,9 +14,11 @@ namespace eval
 {
 struct RigTruthParams
 {
-  /// A top face is whole in view from this visible fraction on. Not 1: the
+  /// A top face is whole in view from this visible fraction on (pixels in
+  /// the image and not hidden, over the face's projected area). Not 1: the
   /// face's outermost pixel row is often lost to rounding when nothing hides
-  /// it (bench_pose's "whole top face visible" group uses the same 0.99).
+  /// it or a corner grazes the image border (bench_pose's "whole top face
+  /// visible" group uses the same 0.99).
   double whole_min_visible_fraction = 0.99;
   /// A catalogue top face is a top while its normal is within this of "up";
   /// a cuboid face is a side while its normal is within this of horizontal.
