@@ -26,7 +26,7 @@ std::string timeCell(const MethodSummary& summary, double fraction)
   return timedInMicroseconds(summary.method) ? formatted("%.2f us", value_us) : formatted("%.2f ms", value_us / 1000.0);
 }
 
-
+/// Errors of one method over the counted bricks of one group.
 struct GroupErrors
 {
   std::vector<double> rotation_deg, translation_mm;
@@ -224,11 +224,11 @@ void writeCsv(const std::string& path, const std::vector<BrickRecord>& bricks)
 }
 
 
-// Curves in kMethods order; the full correction is drawn last, on top.
 void writePlot(const std::string& path, const std::vector<MethodSummary>& summaries)
 {
   const std::array<cv::Scalar, kMethodCount> curve_rgb{
       {cv::Scalar(130, 130, 130), cv::Scalar(240, 150, 20), cv::Scalar(30, 90, 220), cv::Scalar(200, 30, 30)}};
+  // Curves in kMethods order; the full correction is drawn last, on top.
   bench::CdfPlot plot;
   for (std::size_t m = 0; m < kMethodCount; ++m) plot.curves.push_back({methodLabel(kMethods[m]), curve_rgb[m]});
   plot.draw_order = {0, 3, 1, 2};
