@@ -10,7 +10,7 @@
 #   bench/soak.sh                      10 minutes
 #   SOAK_MINUTES=3 bench/soak.sh
 set -uo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd -P "$(dirname "$0")/.." && pwd)
 export PATH=/usr/bin:/bin:$PATH
 set +u
 # shellcheck disable=SC1091

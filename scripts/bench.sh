@@ -3,7 +3,7 @@
 # tool prints a table and one JSON line; everything is also kept under
 # bench/results/. Run on an otherwise idle machine: the figures are timings.
 set -uo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd -P "$(dirname "$0")/.." && pwd)
 # shellcheck source=scripts/ros_env.sh
 source "$root/scripts/ros_env.sh"
 bin=$root/ws/devel/lib/brick_pose

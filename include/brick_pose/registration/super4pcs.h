@@ -45,7 +45,7 @@ struct Super4PCSParams
   double max_angle_difference_deg = 0.0;
   /// Hard budget for the whole call (search and ICP polish), in seconds of
   /// wall-clock time: on a loaded machine the polish may be cut short.
-  double max_time_s = 0.2;
+  double max_time_s = 0.1;
   /// Upper bound on the bases drawn.
   int max_bases = 200;
   /// Stop once LCP >= good_enough_ratio * overlap.
