@@ -2,7 +2,8 @@
 // filtration) against ground truth: the synthetic D415 rig per scene class,
 // mode and resolution, and the real mOSD Kinect scenes.
 //
-//   bench_frontend [--frames N] [--seed S] [--mosd DIR] [--mosd-catalogue FILE] [--no-mosd] [--no-rig]
+//   bench_frontend [--frames N] [--seed S] [--mosd DIR] [--mosd-catalogue FILE] [--box-catalogue FILE]
+//                  [--no-mosd] [--no-rig]
 //                  [--verbose] [--overlay-dir DIR]
 //
 // First the earlier benchmark's block, figures unchanged in meaning: N
@@ -45,7 +46,7 @@ int main(int argc, char** argv)
   run.planned_frames = plan.size();
 
   const RigResults rig =
-      runRig(BrickCatalogue::mbzirc2020(), run.classes, run.modes, run.resolutions, plan, run.options);
+      runRig(classCatalogues(run.classes, run.options), run.classes, run.modes, run.resolutions, plan, run.options);
   const MosdResults mosd = runMosd(run.modes, run.options);
 
   printLegacyBlock(run, rig);

@@ -147,8 +147,10 @@ void printLegacyBlock(const RunInfo& run, const RigResults& rig)
 void printTables(const RunInfo& run, const RigResults& rig, const MosdResults& mosd)
 {
   std::printf("\n== Front end per scene class x mode x resolution (issue 10)\n\n");
-  std::printf("Rig: %zu frames planned per mode and resolution (the %d legacy frames, then %d per further class). "
-              "Whole tops: top faces whole in view (>= 99%% of the face in the image and unhidden); recall counts a candidate "
+  std::printf("Rig: %zu frames planned per mode and resolution (the %d legacy frames, then %d per further class, "
+              "framed by the rig's defaults for its kind, depth model as named). "
+              "Whole tops: catalogue top faces facing up whose edges the rig sees all in the image and unhidden, "
+              ">= 95%% visible; recall counts a candidate "
               "holding >= 70%% of one. False complete: candidates marked complete that are not a whole top of their "
               "type. Errors on the whole tops found: face-frame rotation (mod the half turn), centre, |length|/|width|.\n\n",
               run.planned_frames, run.options.frames, std::max(1, run.options.frames / 4));
@@ -162,6 +164,13 @@ void printTables(const RunInfo& run, const RigResults& rig, const MosdResults& m
     for (std::size_t m = 0; m < run.modes.size(); ++m)
     {
       if (!run.modes[m].mode) continue;
+      const auto not_applicable = rig.not_applicable.find({c, m});
+      if (not_applicable != rig.not_applicable.end())
+      {
+        std::printf("| %s | %s | all | n/a: %s |  |  |  |  |  |  |  |  |  |\n", run.classes[c].label.c_str(),
+                    run.modes[m].name.c_str(), not_applicable->second.c_str());
+        continue;
+      }
       for (std::size_t r = 0; r < run.resolutions.size(); ++r)
         printRow(run.classes[c].label, run.modes[m].name, run.resolutions[r].label,
                  mergedCells(rig.cells, c, m, r));
@@ -243,11 +252,12 @@ std::string jsonLine(const RunInfo& run, const RigResults& rig, const MosdResult
       colour_free ? static_cast<std::size_t>(colour_free - run.modes.data()) : run.modes.size();
   double touching_recall = std::nan("");
   for (std::size_t c = 0; c < run.classes.size(); ++c)
-    if (run.classes[c].rig_kind == "touching_row" && run.classes[c].kind)
+    if (run.classes[c].rig_kind == "touching_rows" && run.classes[c].kind)
       for (const std::size_t m : {hsv, colour_free_index})
         if (m < run.modes.size() && run.modes[m].mode)
         {
           const double recall = mergedCells(rig.cells, c, m, kAny).tally.recall();
+          if (std::isnan(recall)) continue;
           touching_recall = std::isnan(touching_recall) ? recall : std::min(touching_recall, recall);
         }
   int rig_false_complete = 0, mosd_false_complete = 0;

@@ -25,12 +25,19 @@ struct RigResults
   /// earlier benchmark's block.
   std::map<CellKey, CellStats> legacy_cells;
   std::vector<double> frame_build_ms;  ///< makeRgbdFrame at 1280x720 (hsv pass).
+  /// (class, mode) pairs not run, and why (hsv on boxes without plate colours).
+  std::map<std::pair<std::size_t, std::size_t>, std::string> not_applicable;
 };
+
+/// The catalogue of each class, in `classes` order (bricks: MBZIRC; boxes:
+/// options.box_catalogue or config/boxes.yaml). Throws ConfigError when the
+/// box catalogue cannot be read.
+std::vector<BrickCatalogue> classCatalogues(const std::vector<SceneClass>& classes, const Options& options);
 
 /// Modes run in separate passes over the same (re-rendered, bit-identical)
 /// frames, so that one mode's large allocations do not disturb another's
 /// timings; within a mode, resolution by resolution.
-RigResults runRig(const BrickCatalogue& catalogue, const std::vector<SceneClass>& classes,
+RigResults runRig(const std::vector<BrickCatalogue>& catalogues, const std::vector<SceneClass>& classes,
                   const std::vector<ModeSpec>& modes, const std::vector<Resolution>& resolutions,
                   const std::vector<FrameSpec>& plan, const Options& options);
 }  // namespace frontend_bench

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "brick_pose/common/errors.h"
+#include "brick_pose/sim/d415_modes.h"
 
 namespace brick_pose
 {
@@ -36,15 +37,6 @@ std::optional<SegmentationMode> frontEndMode(const std::string& name)
   }
 }
 
-/// The 1280x720 intrinsics scaled by 2/3 (853x480) and cropped about the
-/// centre to `width_px`, as the D415 derives its 480-line colour modes.
-PinholeCamera d415Color480(int width_px)
-{
-  PinholeCamera camera = PinholeCamera::d415Color1280x720().scaled(2.0 / 3.0);
-  camera.cx_px -= 0.5 * (camera.width_px - width_px);
-  camera.width_px = width_px;
-  return camera;
-}
 }  // namespace
 
 Options parseOptions(int argc, char** argv)
@@ -58,13 +50,15 @@ Options parseOptions(int argc, char** argv)
     else if (arg == "--seed" && has_value) options.seed = std::strtoull(argv[++i], nullptr, 10);
     else if (arg == "--mosd" && has_value) options.mosd_dir = argv[++i];
     else if (arg == "--mosd-catalogue" && has_value) options.mosd_catalogue = argv[++i];
+    else if (arg == "--box-catalogue" && has_value) options.box_catalogue = argv[++i];
     else if (arg == "--no-mosd") options.skip_mosd = true;
     else if (arg == "--no-rig") options.skip_rig = true;
     else if (arg == "--verbose") options.verbose = true;
     else if (arg == "--overlay-dir" && has_value) options.overlay_dir = argv[++i];
     else
     {
-      std::cerr << "usage: bench_frontend [--frames N] [--seed S] [--mosd DIR] [--mosd-catalogue FILE] [--no-mosd] "
+      std::cerr << "usage: bench_frontend [--frames N] [--seed S] [--mosd DIR] [--mosd-catalogue FILE] [--box-catalogue FILE] "
+                   "[--no-mosd] "
                    "[--no-rig] [--verbose] [--overlay-dir DIR]\n";
       std::exit(arg == "--help" || arg == "-h" ? 0 : 2);
     }
@@ -76,13 +70,17 @@ Options parseOptions(int argc, char** argv)
 std::vector<SceneClass> sceneClasses()
 {
   // One line per class: report label, rig scene kind, legacy sequence.
+  using C = ClassCatalogue;
+  // One line per class: report label, rig scene kind, legacy sequence,
+  // catalogue, depth model.
   std::vector<SceneClass> classes = {
-      {"singles", "single", true, std::nullopt},
-      {"gapped piles (organised)", "organised_pile", true, std::nullopt},
-      {"unorganised piles", "unorganised_pile", true, std::nullopt},
-      {"touching rows", "touching_row", false, std::nullopt},
-      {"pallet layers", "pallet_layer", false, std::nullopt},
-      {"oblique table views", "oblique_table", false, std::nullopt},
+      {"singles", "single", true, C::kBricks, "ideal", std::nullopt},
+      {"gapped piles (organised)", "organised_pile", true, C::kBricks, "ideal", std::nullopt},
+      {"unorganised piles", "unorganised_pile", true, C::kBricks, "ideal", std::nullopt},
+      {"touching rows (bricks)", "touching_rows", false, C::kBricks, "d4xx", std::nullopt},
+      {"pallet layers (boxes)", "pallet_layer", false, C::kBoxes, "d4xx", std::nullopt},
+      {"pallet stacks (boxes)", "pallet_stack", false, C::kBoxes, "d4xx", std::nullopt},
+      {"oblique table views (boxes)", "table_boxes", false, C::kBoxes, "d4xx", std::nullopt},
   };
   for (SceneClass& scene_class : classes) scene_class.kind = rigKind(scene_class.rig_kind);
   return classes;
@@ -90,9 +88,9 @@ std::vector<SceneClass> sceneClasses()
 
 std::vector<Resolution> resolutions()
 {
-  return {{"1280x720", PinholeCamera::d415Color1280x720(), true},
-          {"848x480", d415Color480(848), false},
-          {"640x480", d415Color480(640), false}};
+  return {{"1280x720", sim::d415ColourMode("1280x720"), true},
+          {"848x480", sim::d415ColourMode("848x480"), false},
+          {"640x480", sim::d415ColourMode("640x480"), false}};
 }
 
 std::vector<ModeSpec> modes()
@@ -166,11 +164,30 @@ std::vector<FrameSpec> framePlan(const std::vector<SceneClass>& classes, const O
 
 sim::SceneParams sceneParamsFor(const SceneClass& scene_class)
 {
+  if (!scene_class.legacy) return sim::SceneParams::defaultsFor(*scene_class.kind);
   sim::SceneParams params;
   params.kind = *scene_class.kind;
   params.min_distance_m = 0.5;
   params.max_distance_m = 2.0;
   return params;
+}
+
+sim::SensorModel sensorFor(const SceneClass& scene_class, sim::Lighting lighting)
+{
+  sim::SensorModel sensor = sim::depthModelFromString(scene_class.depth_model) == sim::DepthModel::kD4xx
+                                ? sim::SensorModel::d4xx()
+                                : sim::SensorModel();
+  sensor.lighting = lighting;
+  return sensor;
+}
+
+std::string modeNotApplicable(const ModeSpec& mode, const BrickCatalogue& catalogue)
+{
+  if (!mode.mode) return "the front end lacks it";
+  if (*mode.mode != SegmentationMode::kHsv) return "";
+  for (const BrickType& type : catalogue.types())
+    if (type.hasPlateColour()) return "";
+  return "no type has a plate colour";
 }
 }  // namespace frontend_bench
 }  // namespace brick_pose

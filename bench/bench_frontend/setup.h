@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 
 #include "brick_pose/camera/pinhole_camera.h"
+#include "brick_pose/catalogue/brick_catalogue.h"
 #include "brick_pose/pipeline/front_end.h"
 #include "brick_pose/sim/scene_generator.h"
 #include "brick_pose/sim/sensor_model.h"
@@ -31,6 +32,7 @@ struct Options
   std::uint64_t seed = 1;
   std::string mosd_dir;      ///< Empty: test/data/mosd_learn under the source tree.
   std::string mosd_catalogue;  ///< Empty: catalogue.yaml there.
+  std::string box_catalogue;   ///< Empty: config/boxes.yaml under the source tree.
   bool skip_mosd = false;
   bool skip_rig = false;       ///< Only the real-scene rows (quick look at mOSD).
   bool verbose = false;      ///< Each false positive, false complete and miss on stderr.
@@ -41,15 +43,27 @@ struct Options
 /// Throws nothing; prints usage and exits on bad arguments.
 Options parseOptions(int argc, char** argv);
 
+/// The catalogue a class's scenes are built from.
+enum class ClassCatalogue
+{
+  kBricks,  ///< MBZIRC bricks, each with a plate colour (BrickCatalogue::mbzirc2020()).
+  kBoxes,   ///< Plain cardboard boxes without one (config/boxes.yaml).
+};
+
 struct SceneClass
 {
   std::string label;      ///< Report name, e.g. "touching rows".
   std::string rig_kind;   ///< sim::SceneKind name.
   /// The earlier benchmark's classes: their frames follow its sequence
   /// (two singles, one organised and one unorganised pile in four frames)
-  /// so that its figures are reproduced. Other classes get frames / 4
-  /// frames each.
+  /// at its distances (0.5-2 m) so that its figures are reproduced. Other
+  /// classes get frames / 4 frames each, framed by the rig's defaults for
+  /// their kind (SceneParams::defaultsFor).
   bool legacy = false;
+  ClassCatalogue catalogue = ClassCatalogue::kBricks;
+  /// sim::DepthModel name: "ideal" (the earlier rig) or "d4xx" (a real
+  /// D4xx's smoothing, fattening, quantisation and misregistration).
+  std::string depth_model = "ideal";
   std::optional<sim::SceneKind> kind;  ///< Resolved; empty when the rig lacks it.
 };
 
@@ -63,7 +77,7 @@ struct Resolution
   bool legacy = false;  ///< The earlier benchmark's resolution.
 };
 
-/// D415 colour modes: 1280x720 and its 2/3 scalings cropped to 848x480 and 640x480.
+/// The rig's D415 colour modes 1280x720, 848x480 and 640x480 (sim::d415ColourMode).
 std::vector<Resolution> resolutions();
 
 struct ModeSpec
@@ -100,7 +114,14 @@ struct FrameSpec
 /// then frames / 4 frames of every other class the rig has.
 std::vector<FrameSpec> framePlan(const std::vector<SceneClass>& classes, const Options& options);
 
-/// SceneParams of a class at the benchmark's distances (0.5-2 m).
+/// SceneParams of a class (see SceneClass::legacy).
 sim::SceneParams sceneParamsFor(const SceneClass& scene_class);
+
+/// The sensor model of a class's depth model, with `lighting`.
+sim::SensorModel sensorFor(const SceneClass& scene_class, sim::Lighting lighting);
+
+/// Why `mode` cannot run on `catalogue` ("" when it can): hsv needs a type
+/// with a plate colour.
+std::string modeNotApplicable(const ModeSpec& mode, const BrickCatalogue& catalogue);
 }  // namespace frontend_bench
 }  // namespace brick_pose

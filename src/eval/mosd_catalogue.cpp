@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 
 #include <opencv2/imgproc.hpp>
@@ -68,7 +69,8 @@ std::pair<int, int> shortestHueInterval(const std::vector<int>& histogram, doubl
   return best;
 }
 
-HsvRange fitHsvRange(const std::vector<MosdTopMeasurement>& members, const std::vector<const MosdScene*>& scenes,
+/// The HSV range of the members' top pixels; none when there are no pixels.
+std::optional<HsvRange> fitHsvRange(const std::vector<MosdTopMeasurement>& members, const std::vector<const MosdScene*>& scenes,
                      const MosdCatalogueParams& params)
 {
   std::vector<int> hue_histogram(kHueCount, 0);
@@ -88,8 +90,8 @@ HsvRange fitHsvRange(const std::vector<MosdTopMeasurement>& members, const std::
       value.push_back(colour[2]);
     }
   }
+  if (saturation.empty()) return std::nullopt;
   HsvRange range;
-  if (saturation.empty()) return range;
   const auto [hue_first, hue_last] = shortestHueInterval(hue_histogram, params.hue_share);
   const double low = params.saturation_value_low_percentile;
   range.min = {hue_first, static_cast<int>(std::floor(percentile(saturation, low))),
@@ -184,12 +186,13 @@ std::string catalogueYaml(const std::vector<BrickType>& types, const std::string
   char line[256];
   for (const BrickType& type : types)
   {
-    std::snprintf(line, sizeof(line),
-                  "  - name: %s\n    length_m: %.4f\n    width_m: %.4f\n    height_m: %.4f\n"
-                  "    hsv_min: [%d, %d, %d]\n    hsv_max: [%d, %d, %d]\n",
-                  type.name.c_str(), type.length_m, type.width_m, type.height_m, type.plate_hsv.min[0],
-                  type.plate_hsv.min[1], type.plate_hsv.min[2], type.plate_hsv.max[0], type.plate_hsv.max[1],
-                  type.plate_hsv.max[2]);
+    std::snprintf(line, sizeof(line), "  - name: %s\n    length_m: %.4f\n    width_m: %.4f\n    height_m: %.4f\n",
+                  type.name.c_str(), type.length_m, type.width_m, type.height_m);
+    yaml << line;
+    if (!type.plate_hsv) continue;  // a type without a plate colour
+    const HsvRange& hsv = *type.plate_hsv;
+    std::snprintf(line, sizeof(line), "    hsv_min: [%d, %d, %d]\n    hsv_max: [%d, %d, %d]\n", hsv.min[0], hsv.min[1],
+                  hsv.min[2], hsv.max[0], hsv.max[1], hsv.max[2]);
     yaml << line;
   }
   return yaml.str();

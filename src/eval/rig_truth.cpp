@@ -44,17 +44,6 @@ FaceRole roleOf(sim::CuboidFace face, const Eigen::Vector3d& normal_in_camera, c
   return FaceRole::kOther;
 }
 
-bool cornersInImage(const std::array<Eigen::Vector3d, 4>& corners_m, const PinholeCamera& camera)
-{
-  for (const Eigen::Vector3d& corner : corners_m)
-  {
-    if (corner.z() <= 0.0) return false;
-    const Eigen::Vector2d pixel = camera.project(corner);
-    if (!camera.contains(pixel.x(), pixel.y())) return false;
-  }
-  return true;
-}
-
 TopFaceGeometry topGeometry(const sim::BrickTruth& truth)
 {
   TopFaceGeometry geometry;
@@ -70,8 +59,8 @@ TopFaceGeometry topGeometry(const sim::BrickTruth& truth)
 
 void RigTruthParams::validate() const
 {
-  if (!(whole_min_visible_fraction > 0.0 && whole_min_visible_fraction <= 1.0))
-    throw ConfigError("whole_min_visible_fraction must be in (0, 1]");
+  if (!(min_visible_fraction > 0.0 && min_visible_fraction <= 1.0))
+    throw ConfigError("min_visible_fraction must be in (0, 1]");
   if (!(max_up_tilt_deg > 0.0 && max_up_tilt_deg < 45.0)) throw ConfigError("max_up_tilt_deg must be in (0, 45)");
 }
 
@@ -99,15 +88,22 @@ SceneTruth rigSceneTruth(const sim::SyntheticFrame& frame, const Eigen::Vector3d
       face_truth.visible_fraction = brick.visible_fraction;
       face_truth.has_geometry = true;
       face_truth.geometry = topGeometry(brick);
-      // The border and occluders alike: the visible fraction counts both,
-      // with the same tolerance for the face's outermost pixels.
+      // The rig's own verdict on the edges (every edge sample in the image
+      // and unhidden), and the visible fraction for what lies inside the
+      // edges (a smaller box standing on a larger one's top).
       char reason[96];
       if (face_truth.role != FaceRole::kTop)
         face_truth.not_whole_reason = "the top face does not face up";
-      else if (brick.visible_fraction < params.whole_min_visible_fraction)
+      else if (brick.top_face_cut_by_border)
+        face_truth.not_whole_reason = "cut by the image border";
+      else if (brick.top_face_occluded || !brick.top_face_complete)
       {
-        const bool cut = !cornersInImage(face_truth.geometry.corners_m, frame.camera);
-        std::snprintf(reason, sizeof(reason), "%s (%.1f%% visible)", cut ? "cut by the image border" : "occluded",
+        std::snprintf(reason, sizeof(reason), "occluded (%.1f%% visible)", 100.0 * brick.visible_fraction);
+        face_truth.not_whole_reason = reason;
+      }
+      else if (brick.visible_fraction < params.min_visible_fraction)
+      {
+        std::snprintf(reason, sizeof(reason), "covered inside its edges (%.1f%% visible)",
                       100.0 * brick.visible_fraction);
         face_truth.not_whole_reason = reason;
       }

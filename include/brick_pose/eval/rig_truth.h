@@ -1,7 +1,8 @@
 #pragma once
 // SceneTruth of a synthetic rig frame: the rig's face labels are exact, so
 // only the roles need deciding (a catalogue top face counts as a top only
-// while it faces up) and whether each top is whole in view.
+// while it faces up); whether each top is whole in view is the rig's own
+// verdict on its edges plus a check of its visible fraction.
 
 #include <Eigen/Core>
 
@@ -14,12 +15,12 @@ namespace eval
 {
 struct RigTruthParams
 {
-  /// A top face is whole in view from this visible fraction on (pixels in
-  /// the image and not hidden, over the face's projected area). Not 1: the
-  /// face's outermost pixel row is often lost to rounding when nothing hides
-  /// it or a corner grazes the image border (bench_pose's "whole top face
-  /// visible" group uses the same 0.99).
-  double whole_min_visible_fraction = 0.99;
+  /// A top face is whole in view when the rig says all its edges are in
+  /// the image and unhidden (BrickTruth::top_face_complete) and at least
+  /// this fraction of it is visible: a box standing inside another's top
+  /// leaves the edges free but hides the face. Not 1: the rounded edges of
+  /// boxes and the outermost pixel row cost a little.
+  double min_visible_fraction = 0.95;
   /// A catalogue top face is a top while its normal is within this of "up";
   /// a cuboid face is a side while its normal is within this of horizontal.
   double max_up_tilt_deg = 30.0;
