@@ -186,8 +186,11 @@ ViewInput prepareInput(const PointSet& source, const PointSet& target, const Sup
   const double model_spacing_m = neighbourSpacing(input.model.points, 0.5, rng);
   const double base_spacing_m = neighbourSpacing(input.base_cloud.points, 0.5, rng);
   const double density_ratio = base_spacing_m > 0.0 ? model_spacing_m / base_spacing_m : 1.0;
-  const int model_sample_size = std::clamp(static_cast<int>(input.model.size() * density_ratio * density_ratio),
-                                           params.sample_size, view.model_sample_size);
+  // Clamped as a double: a degenerate scan (all points within a few microns)
+  // gives a ratio whose square does not fit an int.
+  const double wanted_model_samples = static_cast<double>(input.model.size()) * density_ratio * density_ratio;
+  const int model_sample_size = static_cast<int>(std::max(
+      static_cast<double>(params.sample_size), std::min(wanted_model_samples, static_cast<double>(view.model_sample_size))));
   input.model_sample = input.model.subset(uniformSubsample(input.model.points, model_sample_size, rng));
   const double model_sample_spacing_m = neighbourSpacing(input.model_sample.points, 0.5, rng);
   input.match_radius_m = std::max({params.delta_m, kMatchRadiusPerSpacing * scan_spacing_m, model_spacing_m});
