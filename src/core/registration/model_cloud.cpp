@@ -1,5 +1,6 @@
 #include "brick_pose/registration/model_cloud.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "brick_pose/common/errors.h"
@@ -10,6 +11,16 @@ namespace registration
 {
 namespace
 {
+/// Steps of a grid along `length_m`, rounded and clamped as a double: a
+/// spacing tiny against the length would not fit an int (and no cloud that
+/// large could be held anyway).
+int gridSteps(double length_m, double spacing_m)
+{
+  constexpr double kMaxSteps = 1.0e5;
+  const double steps = std::round(length_m / spacing_m);
+  return std::isnan(steps) ? 1 : static_cast<int>(std::clamp(steps, 1.0, kMaxSteps));
+}
+
 /// Grid on the rectangle origin + s * u + t * v, s in [0, u_len], t in
 /// [0, v_len]: the steps are stretched so both edges are sampled exactly.
 /// The first and last rows (columns) are left out when skip_u_edges
@@ -18,8 +29,8 @@ void addFaceGridWithout(const Eigen::Vector3d& origin, const Eigen::Vector3d& u,
                         const Eigen::Vector3d& v, double v_len, const Eigen::Vector3d& normal, double spacing_m,
                         bool skip_u_edges, bool skip_v_edges, PointSet& cloud)
 {
-  const int u_steps = std::max(1, static_cast<int>(std::lround(u_len / spacing_m)));
-  const int v_steps = std::max(1, static_cast<int>(std::lround(v_len / spacing_m)));
+  const int u_steps = gridSteps(u_len, spacing_m);
+  const int v_steps = gridSteps(v_len, spacing_m);
   const int u_margin = skip_u_edges ? 1 : 0;
   const int v_margin = skip_v_edges ? 1 : 0;
   for (int i = u_margin; i <= u_steps - u_margin; ++i)

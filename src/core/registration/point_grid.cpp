@@ -25,6 +25,10 @@ std::uint64_t hashKey(std::uint64_t key, int shift) { return (key * 0x9E3779B97F
 std::int64_t cellIndex(double scaled)
 {
   constexpr double kLimit = 4.0e15;
+  // A NaN query (a degenerate pose applied to a point) matches nothing: any
+  // cell will do, and converting NaN to an integer is undefined.
+  if (std::isnan(scaled))
+    return 0;
   return static_cast<std::int64_t>(std::floor(std::clamp(scaled, -kLimit, kLimit)));
 }
 }  // namespace

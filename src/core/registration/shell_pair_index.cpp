@@ -75,7 +75,11 @@ ShellPairIndex::ShellPairIndex(const std::vector<Eigen::Vector3d>& points, doubl
   std::vector<std::pair<std::uint64_t, int>> keyed(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
   {
-    const Eigen::Vector3d cell = ((points[i] - lower) / cell_m).array().floor().min(max_cells);
+    // Clamped to [0, max_cells] with NaN sent to 0: the conversion to an
+    // unsigned integer is undefined outside its range.
+    const Eigen::Vector3d cell = ((points[i] - lower) / cell_m).unaryExpr([max_cells](double x) {
+      return std::isnan(x) ? 0.0 : std::clamp(std::floor(x), 0.0, max_cells);
+    });
     keyed[i] = {mortonCode(static_cast<std::uint64_t>(cell.x()), static_cast<std::uint64_t>(cell.y()),
                            static_cast<std::uint64_t>(cell.z())),
                 static_cast<int>(i)};

@@ -15,7 +15,9 @@ std::uint64_t voxelKey(const Eigen::Vector3d& p, double inv_voxel)
 {
   constexpr std::int64_t mask = (std::int64_t(1) << 21) - 1;
   constexpr double kLimit = 4.0e15;  // keeps the conversion to integer defined
-  const Eigen::Vector3d cell = (p * inv_voxel).array().max(-kLimit).min(kLimit).floor();
+  // NaN (0 * inf) to 0 first: converting NaN to an integer is undefined.
+  const Eigen::Vector3d scaled = (p * inv_voxel).unaryExpr([](double x) { return std::isnan(x) ? 0.0 : x; });
+  const Eigen::Vector3d cell = scaled.array().max(-kLimit).min(kLimit).floor();
   return (static_cast<std::uint64_t>(static_cast<std::int64_t>(cell.x()) & mask) << 42) |
          (static_cast<std::uint64_t>(static_cast<std::int64_t>(cell.y()) & mask) << 21) |
          static_cast<std::uint64_t>(static_cast<std::int64_t>(cell.z()) & mask);
