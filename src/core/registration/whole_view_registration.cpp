@@ -10,6 +10,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "brick_pose/common/statistics.h"
+#include "brick_pose/registration/box_view_checks.h"
 #include "brick_pose/registration/congruent_set_finder.h"
 #include "brick_pose/registration/coplanar_base.h"
 #include "brick_pose/registration/icp_polish.h"
@@ -60,6 +61,15 @@ constexpr int kHypothesisFitIterations = 8;
 constexpr std::size_t kFitScanPoints = 300;
 // The polished pose is kept unless its combined score drops by more.
 constexpr double kMaxScoreDropByPolish = 0.03;
+// Competitors within the confidence margin polished to see where they settle,
+// at most (each costs about one polish).
+constexpr int kMaxSettledCompetitors = 3;
+// A seen face moves the pose along its normal (snappedToSeenFaces) when this
+// many scan points lie on it with normals within kSnapNormalDeg of its own,
+// by at most kMaxSnapM (further is no polish residue but another pose).
+constexpr double kSnapNormalDeg = 20.0;
+constexpr int kMinSnapPoints = 20;
+constexpr double kMaxSnapM = 0.03;
 // Model faces turned towards the viewpoint by more than this take part in the
 // polish: a grazing face has next to no scan points, and its boundary, unmatched
 // in the scan, would only hide the fold edge the scan does show.
@@ -520,6 +530,130 @@ Eigen::Isometry3d polishOnVisibleFaces(const ViewInput& input, const Eigen::Isom
   scales.source_diameter_m = approximateDiameter(visible.points, rng);
   return polishWithIcp(visible, polish_target, pose, scales, params, start, rng);
 }
+
+
+/// The pose moved along each box axis so that the scan points lying on the
+/// box face across that axis (their normal along it, their position inside
+/// the face) sit on that face, at the median of their offsets. The polish
+/// weighs a narrow end face by its few points against the thousands of a
+/// long face, and a long face's points say nothing about the slide along
+/// it: the end face, whenever it is seen, fixes that slide by itself.
+Eigen::Isometry3d snappedToSeenFaces(const Eigen::Isometry3d& pose, const ViewInput& input,
+                                     const ModelSymmetries& symmetries)
+{
+  if (!symmetries.box_like || !input.scan.hasNormals())
+    return pose;
+  const Eigen::Isometry3d target_to_model = pose.inverse();
+  const Eigen::Matrix3d to_box = symmetries.axes.transpose();
+  const double min_cos = std::cos(kSnapNormalDeg * kDegToRad);
+  std::vector<double> offsets[3];
+  for (int i : input.trusted)
+  {
+    const Eigen::Vector3d local = to_box * (target_to_model * input.scan.points[i] - symmetries.centre_m);
+    const Eigen::Vector3d normal = to_box * (target_to_model.linear() * input.scan.normals[i]);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      if (std::abs(normal(axis)) < min_cos)
+        continue;
+      bool inside = true;
+      for (int other = 0; other < 3; ++other)
+        inside = inside && (other == axis || std::abs(local(other)) <= symmetries.half_extents_m(other));
+      if (!inside)
+        continue;
+      const double face = normal(axis) > 0.0 ? symmetries.half_extents_m(axis) : -symmetries.half_extents_m(axis);
+      offsets[axis].push_back(local(axis) - face);
+    }
+  }
+  Eigen::Vector3d shift_box = Eigen::Vector3d::Zero();
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (static_cast<int>(offsets[axis].size()) < kMinSnapPoints)
+      continue;
+    const double offset_m = percentile(offsets[axis], 0.5);
+    if (std::abs(offset_m) <= kMaxSnapM)
+      shift_box(axis) = offset_m;
+  }
+  Eigen::Isometry3d moved = pose;
+  moved.translation() += pose.linear() * (symmetries.axes * shift_box);
+  return moved;
+}
+
+/// The polished pose and its score, or the pose as it was when the polish
+/// lost more than kMaxScoreDropByPolish of its score.
+Hypothesis polished(const Hypothesis& hypothesis, const ViewInput& input, const ViewConsistency& consistency,
+                    const ModelSymmetries& symmetries, const Super4PCSParams& params, SteadyClock::time_point start, std::mt19937_64& rng)
+{
+  if (params.refine_iterations <= 0)
+    return hypothesis;
+  Hypothesis result = hypothesis;
+  result.pose = snappedToSeenFaces(polishOnVisibleFaces(input, hypothesis.pose, params, start, rng), input, symmetries);
+  result.view = consistency.evaluate(result.pose);
+  result.view_evaluated = true;
+  if (result.view.combined() < hypothesis.view.combined() - kMaxScoreDropByPolish)
+    return hypothesis;
+  return result;
+}
+
+struct Comparison
+{
+  Hypothesis best;
+  double second_best = 0.0;  ///< combined score of the best distinct pose
+};
+
+/// The best of the fitted hypotheses (`scored`, best first), polished, and the
+/// score of its strongest distinct competitor. Coverage scores change slowly
+/// when a pose slides along a long face (by offset / length), so a pose a
+/// few centimetres along from the best one scores nearly as well without
+/// being another answer: it lies in the same basin. A competitor within the
+/// confidence margin is therefore polished too (the boundary stage sees the
+/// ends of faces); when it settles on the best pose it is the same answer,
+/// when it settles elsewhere with a close score the view is ambiguous, and
+/// when it settles elsewhere with a better score it becomes the best.
+Comparison settleCompetitors(const std::vector<Hypothesis>& scored, const ViewInput& input,
+                             const ViewConsistency& consistency, const ModelSymmetries& symmetries,
+                             const Super4PCSParams& params, SteadyClock::time_point start, std::mt19937_64& rng)
+{
+  auto same = [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+    return samePoseModuloSymmetry(a, b, symmetries, kSameHypothesisDeg, kSameHypothesisOffsetM);
+  };
+  Comparison comparison;
+  comparison.best = polished(scored.front(), input, consistency, symmetries, params, start, rng);
+  // Poses settled so far other than the best, with their scores.
+  std::vector<Hypothesis> settled;
+  int polishes = 0;
+  for (std::size_t i = 1; i < scored.size(); ++i)
+  {
+    const Hypothesis& candidate = scored[i];
+    if (same(scored.front().pose, candidate.pose) || same(comparison.best.pose, candidate.pose))
+      continue;
+    bool known = false;
+    for (const Hypothesis& other : settled)
+      known = known || same(other.pose, candidate.pose);
+    if (known)
+      continue;
+    const bool close = candidate.view.combined() >= comparison.best.view.combined() - params.view.min_confidence;
+    if (!close || polishes >= kMaxSettledCompetitors || params.refine_iterations <= 0)
+    {
+      // Not settled: it counts with its fitted score (a competitor too far
+      // below to matter, or one the budget of polishes leaves as it is).
+      comparison.second_best = std::max(comparison.second_best, candidate.view.combined());
+      if (!close)
+        break;  // sorted: no later one is close either
+      continue;
+    }
+    ++polishes;
+    Hypothesis settled_candidate = polished(candidate, input, consistency, symmetries, params, start, rng);
+    if (same(comparison.best.pose, settled_candidate.pose))
+      continue;  // the same basin: the same answer
+    if (settled_candidate.view.combined() > comparison.best.view.combined())
+      std::swap(settled_candidate, comparison.best);
+    settled.push_back(settled_candidate);
+  }
+  for (const Hypothesis& other : settled)
+    if (!same(comparison.best.pose, other.pose))
+      comparison.second_best = std::max(comparison.second_best, other.view.combined());
+  return comparison;
+}
 }  // namespace
 
 bool isMultiFaceModel(const PointSet& source)
@@ -609,27 +743,9 @@ RegistrationResult alignWholeView(const PointSet& source, const PointSet& target
   for (const Eigen::Isometry3d& alternative : slidAlternatives(scored.front().pose, input, symmetries))
     scored.push_back(fitAndScore(alternative, fit_context, input, consistency, params));
   std::stable_sort(scored.begin(), scored.end(), by_score);
-  Hypothesis best = scored.front();
-  double second_best = 0.0;
-  const double same_offset_m = kSameHypothesisOffsetM;
-  for (std::size_t i = 1; i < scored.size(); ++i)
-    if (!samePoseModuloSymmetry(best.pose, scored[i].pose, symmetries, kSameHypothesisDeg, same_offset_m))
-    {
-      second_best = scored[i].view.combined();
-      break;
-    }
-
-  if (params.refine_iterations > 0)
-  {
-    const Eigen::Isometry3d polished =
-        polishOnVisibleFaces(input, best.pose, params, start, rng);
-    const ViewScore polished_score = consistency.evaluate(polished);
-    if (polished_score.combined() >= best.view.combined() - kMaxScoreDropByPolish)
-    {
-      best.pose = polished;
-      best.view = polished_score;
-    }
-  }
+  const Comparison comparison = settleCompetitors(scored, input, consistency, symmetries, params, start, rng);
+  const Hypothesis& best = comparison.best;
+  const double second_best = comparison.second_best;
   result.refine_cpu_s = threadCpuSeconds() - refine_cpu_start_s;
 
   result.source_to_target = best.pose;
@@ -651,6 +767,17 @@ RegistrationResult alignWholeView(const PointSet& source, const PointSet& target
     doubts.push_back("the pose puts " + formatScore(best.view.free_space_violation) +
                      " of its visible surface in front of what the camera saw (allowed " +
                      formatScore(view.max_free_space_violation) + ")");
+  if (symmetries.box_like)
+  {
+    ModelBox box;
+    box.centre_m = symmetries.centre_m;
+    box.axes = symmetries.axes;
+    box.half_extents_m = symmetries.half_extents_m;
+    BoxViewCheckParams box_check;
+    box_check.viewpoint_m = view.viewpoint_m;
+    const BoxViewCheck measured = checkBoxView(best.pose, box, input.scan, input.trusted, box_check);
+    doubts.insert(doubts.end(), measured.doubts.begin(), measured.doubts.end());
+  }
   if (result.confidence < view.min_confidence)
     doubts.push_back("another pose scores nearly as well (margin " + formatScore(result.confidence) + ", needs " +
                      formatScore(view.min_confidence) + ")");
