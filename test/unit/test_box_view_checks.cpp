@@ -89,3 +89,20 @@ TEST(BoxViewChecks, RejectsBadParameters)
   EXPECT_THROW(checkBoxView(Eigen::Isometry3d::Identity(), cardboardBox(), scan, all(scan), params),
                brick_pose::ConfigError);
 }
+
+// A face turned within its plane keeps its plane and nearly all its coverage;
+// the rectangle around its points is least at the scan's own turn.
+TEST(BoxViewChecks, AFaceTurnedWithinItsPlaneIsNotTrusted)
+{
+  const PointSet scan = topFaceScan();
+  Eigen::Isometry3d turned = Eigen::Isometry3d::Identity();
+  turned.linear() = Eigen::AngleAxisd(6.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const BoxViewCheck check = checkBoxView(turned, cardboardBox(), scan, all(scan), fromAbove());
+  EXPECT_NEAR(check.max_face_turn_deg, 6.0, 0.6);
+  EXPECT_LT(check.max_face_tilt_deg, 0.1);
+  ASSERT_FALSE(check.doubts.empty());
+  EXPECT_NE(check.doubts.front().find("turned"), std::string::npos) << check.doubts.front();
+
+  const BoxViewCheck right = checkBoxView(Eigen::Isometry3d::Identity(), cardboardBox(), scan, all(scan), fromAbove());
+  EXPECT_LT(right.max_face_turn_deg, 0.6);
+}

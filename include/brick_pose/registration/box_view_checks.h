@@ -51,6 +51,16 @@ struct BoxViewCheckParams
   int span_trim_points = 3;
   /// Largest angle between a seen face's fitted plane and the pose's face.
   double max_face_tilt_deg = 3.0;
+  /// Largest turn of a seen face within its plane against the pose's face
+  /// (the least-area rectangle around its points, searched in steps of
+  /// turn_step_deg up to turn_search_deg either way).
+  double max_face_turn_deg = 5.5;
+  /// Fewest points on a face for its turn to be judged: the least-area
+  /// rectangle of a small face, its corners rounded off by the normals'
+  /// radius, turns freely by several degrees.
+  int min_turn_face_points = 300;
+  double turn_step_deg = 0.5;
+  double turn_search_deg = 15.0;
 
   /// Throws ConfigError naming the first unusable field.
   void validate() const;
@@ -63,6 +73,7 @@ struct BoxViewCheck
   /// The largest tilt of a judged face (degrees), and the smallest ratio of
   /// the scan's span to an edge of a facing face.
   double max_face_tilt_deg = 0.0;
+  double max_face_turn_deg = 0.0;
   double min_span_ratio = 1.0;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
@@ -62,6 +63,42 @@ double planeTiltDeg(const std::vector<Eigen::Vector3d>& points, int axis)
   const Eigen::Vector3d normal = solver.eigenvectors().col(0);  // smallest variance
   return std::acos(std::min(1.0, std::abs(normal(axis)))) / kDegToRad;
 }
+/// Angle (degrees) by which the face's points (box coordinates, on the face
+/// across `axis`) are turned within the face from the pose's face: the turn
+/// within +-search_deg of the least-area rectangle around them (their
+/// spans trimmed by `trim` points at each end). A rectangle's own turn is
+/// the least-area one; a square's points give no axes by their spread, but
+/// their bounding rectangle grows by (cos + sin) when turned.
+double inPlaneTurnDeg(const std::vector<Eigen::Vector3d>& points, int axis, double search_deg, double step_deg,
+                      int trim)
+{
+  const int u_axis = (axis + 1) % 3;
+  const int v_axis = (axis + 2) % 3;
+  std::vector<double> u(points.size());
+  std::vector<double> v(points.size());
+  double best_area = std::numeric_limits<double>::infinity();
+  double best_deg = 0.0;
+  const int steps = static_cast<int>(std::ceil(search_deg / step_deg));
+  for (int step = -steps; step <= steps; ++step)
+  {
+    const double angle_rad = step * step_deg * kDegToRad;
+    const double c = std::cos(angle_rad);
+    const double s = std::sin(angle_rad);
+    for (std::size_t k = 0; k < points.size(); ++k)
+    {
+      u[k] = c * points[k](u_axis) + s * points[k](v_axis);
+      v[k] = -s * points[k](u_axis) + c * points[k](v_axis);
+    }
+    const double area = trimmedSpan(u, trim) * trimmedSpan(v, trim);
+    // Ties (a coarse cloud) go to the smaller turn.
+    if (area < best_area - 1e-12 || (area <= best_area + 1e-12 && std::abs(step) < std::abs(best_deg / step_deg)))
+    {
+      best_area = area;
+      best_deg = step * step_deg;
+    }
+  }
+  return best_deg;
+}
 }  // namespace
 
 void BoxViewCheckParams::validate() const
@@ -75,10 +112,14 @@ void BoxViewCheckParams::validate() const
   require(face_normal_deg > 0.0 && face_normal_deg < 90.0, "face_normal_deg");
   require(max_face_distance_m > 0.0 && std::isfinite(max_face_distance_m), "max_face_distance_m");
   require(min_face_points >= 3, "min_face_points");
+  require(min_turn_face_points >= 3, "min_turn_face_points");
   require(max_span_shortfall_m >= 0.0 && std::isfinite(max_span_shortfall_m), "max_span_shortfall_m");
   require(max_span_shortfall_fraction >= 0.0 && max_span_shortfall_fraction <= 1.0, "max_span_shortfall_fraction");
   require(span_trim_points >= 0, "span_trim_points");
   require(max_face_tilt_deg > 0.0 && max_face_tilt_deg < 90.0, "max_face_tilt_deg");
+  require(turn_step_deg > 0.0 && turn_step_deg <= 10.0, "turn_step_deg");
+  require(turn_search_deg >= turn_step_deg && turn_search_deg <= 45.0, "turn_search_deg");
+  require(max_face_turn_deg > 0.0 && max_face_turn_deg < turn_search_deg, "max_face_turn_deg");
 }
 
 BoxViewCheck checkBoxView(const Eigen::Isometry3d& pose, const ModelBox& box, const PointSet& scan,
@@ -122,6 +163,13 @@ BoxViewCheck checkBoxView(const Eigen::Isometry3d& pose, const ModelBox& box, co
           on_face.push_back(local[k]);
       if (static_cast<int>(on_face.size()) < params.min_face_points)
         continue;
+      const double turn_deg = std::abs(
+          inPlaneTurnDeg(on_face, axis, params.turn_search_deg, params.turn_step_deg, params.span_trim_points));
+      check.max_face_turn_deg = std::max(check.max_face_turn_deg, turn_deg);
+      if (turn_deg > params.max_face_turn_deg && static_cast<int>(on_face.size()) >= params.min_turn_face_points)
+        check.doubts.push_back("the scan's face across the box's " + std::string(axisName(axis)) +
+                               " axis is turned " + formatDegrees(turn_deg) + " within its plane from the pose's (allowed " +
+                               formatDegrees(params.max_face_turn_deg) + ")");
       const double tilt_deg = planeTiltDeg(on_face, axis);
       check.max_face_tilt_deg = std::max(check.max_face_tilt_deg, tilt_deg);
       if (tilt_deg > params.max_face_tilt_deg)

@@ -70,6 +70,10 @@ constexpr int kMaxSettledCompetitors = 3;
 constexpr double kSnapNormalDeg = 20.0;
 constexpr int kMinSnapPoints = 20;
 constexpr double kMaxSnapM = 0.03;
+// Polishes of the same answer from different starts end this close together
+// on a view that fixes the pose (bench: up to 3 mm; 9 mm and more on a long
+// face whose end is out of view, once 12 mm off the truth).
+constexpr double kSettledAgreementM = 0.006;
 // Model faces turned towards the viewpoint by more than this take part in the
 // polish: a grazing face has next to no scan points, and its boundary, unmatched
 // in the scan, would only hide the fold edge the scan does show.
@@ -598,6 +602,10 @@ struct Comparison
 {
   Hypothesis best;
   double second_best = 0.0;  ///< combined score of the best distinct pose
+  /// A competitor settled on the best pose only within kSameHypothesisOffsetM,
+  /// not within kSettledAgreementM: the view does not fix the position to
+  /// the accuracy claimed.
+  bool loosely_settled = false;
 };
 
 /// The best of the fitted hypotheses (`scored`, best first), polished, and the
@@ -644,7 +652,14 @@ Comparison settleCompetitors(const std::vector<Hypothesis>& scored, const ViewIn
     ++polishes;
     Hypothesis settled_candidate = polished(candidate, input, consistency, symmetries, params, start, rng);
     if (same(comparison.best.pose, settled_candidate.pose))
-      continue;  // the same basin: the same answer
+    {
+      // The same basin: the same answer, unless its floor is so flat that
+      // polishes from nearby starts end a good part of the tolerance apart.
+      comparison.loosely_settled =
+          comparison.loosely_settled || !samePoseModuloSymmetry(comparison.best.pose, settled_candidate.pose, symmetries,
+                                                                kSameHypothesisDeg, kSettledAgreementM);
+      continue;
+    }
     if (settled_candidate.view.combined() > comparison.best.view.combined())
       std::swap(settled_candidate, comparison.best);
     settled.push_back(settled_candidate);
@@ -778,6 +793,9 @@ RegistrationResult alignWholeView(const PointSet& source, const PointSet& target
     const BoxViewCheck measured = checkBoxView(best.pose, box, input.scan, input.trusted, box_check);
     doubts.insert(doubts.end(), measured.doubts.begin(), measured.doubts.end());
   }
+  if (comparison.loosely_settled)
+    doubts.push_back("polishes from nearby starts end more than " + formatScore(1e3 * kSettledAgreementM) +
+                     " mm apart (the view leaves the position loose)");
   if (result.confidence < view.min_confidence)
     doubts.push_back("another pose scores nearly as well (margin " + formatScore(result.confidence) + ", needs " +
                      formatScore(view.min_confidence) + ")");
