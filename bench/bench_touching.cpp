@@ -58,6 +58,7 @@ struct Options
   std::string mosd_catalogue = "config/mosd_boxes.yaml";
   bool measure_mosd = false;
   std::string overlay_dir;  // write mOSD overlays (segments, candidates, rejections) here
+  int rig_frames = 0;        // also run bench_frontend's first N rig frames in hsv mode (debugging)
 };
 
 std::vector<std::string> splitList(const std::string& text)
@@ -83,6 +84,7 @@ Options parseOptions(int argc, char** argv)
     else if (arg == "--mosd-catalogue" && has_value) options.mosd_catalogue = argv[++i];
     else if (arg == "--measure-mosd") options.measure_mosd = true;
     else if (arg == "--overlay" && has_value) options.overlay_dir = argv[++i];
+    else if (arg == "--rig-frames" && has_value) options.rig_frames = std::max(0, std::atoi(argv[++i]));
     else
     {
       std::cerr << "usage: bench_touching [--frames N] [--seed S] [--modes hsv,region_growing] [--mosd DIR]\n"
@@ -217,7 +219,7 @@ struct Stats
   int truths = 0, found = 0, candidates = 0, true_positives = 0, complete = 0, false_complete = 0;
   int whole_truths = 0, whole_found_complete = 0;
   std::vector<double> corner_error_px, total_ms;
-  std::map<std::string, int> misses, false_completes;
+  std::map<std::string, int> misses, false_completes, partial_whole;
 
   double recall() const { return truths ? static_cast<double>(found) / truths : 1.0; }
   double precision() const { return candidates ? static_cast<double>(true_positives) / candidates : 1.0; }
@@ -275,12 +277,27 @@ void scoreSynthetic(const FrontEndResult& result, const sim::SyntheticFrame& fra
       ++stats.true_positives;
       corner_px = worstCornerErrorPx(candidate, *truth, frame.camera);
       if (truth->visible_fraction >= 0.95) stats.corner_error_px.push_back(corner_px);
+      if (truth->visible_fraction >= 0.95 && !candidate.complete)
+      {
+        std::string reason = candidate.partial_reason;
+        for (char& c : reason)
+          if (c >= '0' && c <= '9') c = '#';
+        ++stats.partial_whole[reason.substr(0, 70)];
+        if (std::getenv("BENCH_VERBOSE"))
+          std::fprintf(stderr, "whole top partial (%s) %s %.3f x %.3f: %s\n", layout.c_str(), candidate.type_name.c_str(),
+                       candidate.length_m, candidate.width_m, candidate.partial_reason.c_str());
+      }
     }
     if (!candidate.complete) continue;
     std::string why;
     if (!true_positive) why = "not a true positive";
     else if (truth->visible_fraction < 0.95) why = "top not wholly visible";
     else if (corner_px > 8.0) why = "a corner more than 8 px off";
+    if (!why.empty() && std::getenv("BENCH_VERBOSE"))
+      std::fprintf(stderr, "  %s: corner %.1f px, truth visible %.2f, edges %s %s %s %s\n", layout.c_str(), corner_px,
+                   truth ? truth->visible_fraction : 0.0, toString(candidate.edge_kinds[0]).c_str(),
+                   toString(candidate.edge_kinds[1]).c_str(), toString(candidate.edge_kinds[2]).c_str(),
+                   toString(candidate.edge_kinds[3]).c_str());
     if (!why.empty())
     {
       ++stats.false_complete;
@@ -347,27 +364,17 @@ void printStats(const std::string& title, const Stats& stats)
   for (const auto& [reason, count] : stats.misses) std::printf("  missed: %-60s %d\n", reason.c_str(), count);
   for (const auto& [reason, count] : stats.false_completes)
     std::printf("  false complete: %-52s %d\n", reason.c_str(), count);
+  for (const auto& [reason, count] : stats.partial_whole)
+    std::printf("  whole top partial: %-70s %d\n", reason.c_str(), count);
 }
 
 // ---------------------------------------------------------------- mOSD
 
-/// The catalogue type whose top is `object`'s top size within 1.5 cm and
-/// whose height is the box's within 2.5 cm, with no other box nearer right
-/// next to it (a strip of a top hidden under another box, or a top whose
-/// box is hidden below it, is not counted); nullptr when none.
-const BrickType* catalogueTopOf(const test::MosdObject& object, const BrickCatalogue& catalogue)
-{
-  if (object.top_occluded) return nullptr;
-  for (const BrickType& type : catalogue.types())
-    if (std::abs(object.top_length_m - type.length_m) <= 0.015 && std::abs(object.top_width_m - type.width_m) <= 0.015 &&
-        object.top_tilt_deg <= 10.0 && std::abs(object.height_m - type.height_m) <= 0.025)
-      return &type;
-  return nullptr;
-}
+using test::catalogueTopOf;
 
 struct MosdStats
 {
-  int whole_tops = 0, found = 0, candidates = 0, complete = 0, false_complete = 0;
+  int whole_tops = 0, found = 0, found_complete = 0, candidates = 0, complete = 0, false_complete = 0;
   std::vector<double> total_ms;
   std::vector<std::string> notes;
 };
@@ -378,7 +385,7 @@ void scoreMosd(const test::MosdScene& scene, const test::MosdTruth& truth, const
   stats.total_ms.push_back(result.timings.total_ms);
   std::map<int, const test::MosdObject*> objects;
   for (const auto& object : truth.objects) objects[object.id] = &object;
-  std::map<int, bool> found;
+  std::map<int, bool> found, found_complete;
   for (const BrickCandidate& candidate : result.candidates)
   {
     ++stats.candidates;
@@ -401,7 +408,11 @@ void scoreMosd(const test::MosdScene& scene, const test::MosdTruth& truth, const
     const BrickType* claimed = catalogue.find(candidate.type_name);
     const bool same_top = top_type && claimed && std::abs(top_type->length_m - claimed->length_m) <= 0.015 &&
                           std::abs(top_type->width_m - claimed->width_m) <= 0.015;
-    if (share >= 0.5 && same_top) found[best] = true;
+    if (share >= 0.5 && same_top)
+    {
+      found[best] = true;
+      found_complete[best] = found_complete[best] || candidate.complete;
+    }
     if (!candidate.complete) continue;
     ++stats.complete;
     if (std::getenv("BENCH_VERBOSE"))
@@ -429,6 +440,7 @@ void scoreMosd(const test::MosdScene& scene, const test::MosdTruth& truth, const
     if (found[object.id])
     {
       ++stats.found;
+      stats.found_complete += found_complete[object.id] ? 1 : 0;
       continue;
     }
     std::ostringstream note;
@@ -460,10 +472,10 @@ void scoreMosd(const test::MosdScene& scene, const test::MosdTruth& truth, const
 
 /// The scene with each segment outlined in its own colour, then the
 /// candidates (green) and rejections (red) over it.
-void writeOverlay(const std::string& directory, const test::MosdScene& scene, const std::vector<Segment>& segments,
-                  const FrontEndResult& result, const std::string& mode)
+void writeOverlay(const std::string& directory, const std::string& name, const RgbdFrame& frame,
+                  const std::vector<Segment>& segments, const FrontEndResult& result, const std::string& mode)
 {
-  cv::Mat image = drawCandidateOverlay(scene.frame.rgb, result);
+  cv::Mat image = drawCandidateOverlay(frame.rgb, result);
   for (std::size_t k = 0; k < segments.size(); ++k)
   {
     const cv::Scalar colour((53 * k) % 256, (101 * k + 80) % 256, (197 * k + 160) % 256);
@@ -479,7 +491,7 @@ void writeOverlay(const std::string& directory, const test::MosdScene& scene, co
     }
   cv::Mat bgr;
   cv::cvtColor(image, bgr, cv::COLOR_RGB2BGR);
-  cv::imwrite(directory + "/" + scene.name + "_" + mode + ".png", bgr);
+  cv::imwrite(directory + "/" + name + "_" + mode + ".png", bgr);
 }
 
 int measureMosd(const Options& options)
@@ -522,6 +534,8 @@ int main(int argc, char** argv)
   std::map<std::string, Stats> touching;
   for (int i = 0; i < options.frames; ++i)
   {
+    // BENCH_ONLY_FRAME=i: just that frame (with BRICK_POSE_DEBUG_* output).
+    if (std::getenv("BENCH_ONLY_FRAME") && std::atoi(std::getenv("BENCH_ONLY_FRAME")) != i) continue;
     const std::uint64_t frame_seed = options.seed * 1000003ULL + static_cast<std::uint64_t>(i);
     std::string layout;
     const sim::Scene scene = touchingScene(catalogue, frame_seed, layout);
@@ -539,9 +553,56 @@ int main(int argc, char** argv)
       params.mode = mode;
       const FrontEnd front_end(catalogue, params);
       const FrontEndResult result = front_end.process(frame);
+      Stats& all = touching[toString(mode) + " all"];
+      const int bad_before = all.truths - all.found + all.false_complete;
       scoreSynthetic(result, synthetic, touching[toString(mode) + " " + resolution], layout);
-      scoreSynthetic(result, synthetic, touching[toString(mode) + " all"], layout);
+      scoreSynthetic(result, synthetic, all, layout + ", frame " + std::to_string(i));
+      if (!options.overlay_dir.empty() && all.truths - all.found + all.false_complete > bad_before)
+        writeOverlay(options.overlay_dir, "touching" + std::to_string(i), frame, front_end.segment(frame), result,
+                     toString(mode));
     }
+  }
+
+  // bench_frontend's rig frames (same seeds), hsv: misses and overlays.
+  if (options.rig_frames > 0)
+  {
+    std::vector<sim::SceneGenerator> generators;
+    for (const sim::SceneKind kind :
+         {sim::SceneKind::kSingle, sim::SceneKind::kOrganisedPile, sim::SceneKind::kUnorganisedPile})
+    {
+      sim::SceneParams params;
+      params.kind = kind;
+      params.min_distance_m = 0.5;
+      params.max_distance_m = 2.0;
+      generators.emplace_back(catalogue, params);
+    }
+    const std::vector<sim::Lighting> lightings = {sim::Lighting::kNormal, sim::Lighting::kSunlight,
+                                                  sim::Lighting::kLowLight};
+    const PinholeCamera camera = PinholeCamera::d415Color1280x720();
+    const FrontEnd front_end(catalogue, FrontEndParams());
+    Stats rig;
+    for (int i = 0; i < options.rig_frames; ++i)
+    {
+      const std::uint64_t frame_seed = 1 * 1000003ULL + static_cast<std::uint64_t>(i);
+      const int kind_index = i % 4 == 3 ? 2 : (i % 4 == 2 ? 1 : 0);
+      const sim::Scene scene = generators[static_cast<std::size_t>(kind_index)].generate(frame_seed);
+      sim::SensorModel sensor;
+      sensor.lighting = lightings[static_cast<std::size_t>((i / 4) % 3)];
+      const sim::SyntheticFrame synthetic = sim::SyntheticRig(camera, sensor).render(scene, frame_seed);
+      FrameHeader header;
+      header.stamp_ns = i;
+      const RgbdFrame frame = makeRgbdFrame(synthetic.rgb, synthetic.depth_mm, camera, header);
+      const FrontEndResult result = front_end.process(frame);
+      const int misses_before = rig.truths - rig.found;
+      scoreSynthetic(result, synthetic, rig, "rig frame " + std::to_string(i));
+      if (!options.overlay_dir.empty() && rig.truths - rig.found > misses_before)
+      {
+        cv::Mat bgr;
+        cv::cvtColor(drawCandidateOverlay(frame.rgb, result), bgr, cv::COLOR_RGB2BGR);
+        cv::imwrite(options.overlay_dir + "/rig" + std::to_string(i) + ".png", bgr);
+      }
+    }
+    printStats("rig frames, hsv", rig);
   }
 
   // 2. mOSD.
@@ -563,7 +624,8 @@ int main(int argc, char** argv)
         const std::vector<Segment> faces = test::labelledFaceSegments(*scene, truth);
         front_end.filterSegments(scene->frame, faces, result);
         scoreMosd(*scene, truth, boxes, result, mosd["labelled faces"]);
-        if (!options.overlay_dir.empty()) writeOverlay(options.overlay_dir, *scene, faces, result, "labelled");
+        if (!options.overlay_dir.empty())
+          writeOverlay(options.overlay_dir, scene->name, scene->frame, faces, result, "labelled");
       }
       for (const SegmentationMode mode : modes)
       {
@@ -573,7 +635,8 @@ int main(int argc, char** argv)
         const FrontEndResult result = front_end.process(scene->frame);
         scoreMosd(*scene, truth, boxes, result, mosd[toString(mode)]);
         if (!options.overlay_dir.empty())
-          writeOverlay(options.overlay_dir, *scene, front_end.segment(scene->frame), result, toString(mode));
+          writeOverlay(options.overlay_dir, scene->name, scene->frame, front_end.segment(scene->frame), result,
+                       toString(mode));
       }
     }
   }
@@ -601,7 +664,8 @@ int main(int argc, char** argv)
     {
       const MosdStats& stats = mosd[run];
       std::printf("\n== mOSD learn0-24, %s ==\n", run.c_str());
-      std::printf("  whole catalogue tops found  %d / %d\n", stats.found, stats.whole_tops);
+      std::printf("  whole catalogue tops found  %d / %d  (complete %d)\n", stats.found, stats.whole_tops,
+                  stats.found_complete);
       std::printf("  candidates %d, complete %d, false complete %d\n", stats.candidates, stats.complete,
                   stats.false_complete);
       if (!stats.total_ms.empty())

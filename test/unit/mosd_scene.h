@@ -18,6 +18,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "brick_pose/catalogue/brick_catalogue.h"
 #include "brick_pose/frame/frame_builder.h"
 #include "brick_pose/roi/least_area_quad.h"
 #include "brick_pose/segmentation/segment.h"
@@ -229,6 +230,21 @@ inline MosdTruth analyseMosdScene(const MosdScene& scene)
   }
   return truth;
 }
+/// The catalogue type whose top is `object`'s whole top: its measured size
+/// within 1.5 cm (the catalogue's are face-plane sizes, the mask's bleed a
+/// little), its height within 2.5 cm, level within 10 deg, and no other box
+/// nearer right next to it (a strip of a top hidden under another box, or a
+/// top whose box is hidden below it, is not whole); nullptr when none.
+inline const BrickType* catalogueTopOf(const MosdObject& object, const BrickCatalogue& catalogue)
+{
+  if (object.top_occluded) return nullptr;
+  for (const BrickType& type : catalogue.types())
+    if (std::abs(object.top_length_m - type.length_m) <= 0.015 && std::abs(object.top_width_m - type.width_m) <= 0.015 &&
+        object.top_tilt_deg <= 10.0 && std::abs(object.height_m - type.height_m) <= 0.025)
+      return &type;
+  return nullptr;
+}
+
 /// A colour-free segment of the given mask's pixels.
 inline Segment segmentOf(const cv::Mat& mask, const RgbdFrame& frame)
 {

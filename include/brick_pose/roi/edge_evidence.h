@@ -30,12 +30,14 @@ enum class EdgeKind : std::uint8_t
   kStepDown,     ///< Beyond the edge the surface drops away from the face (ground, a lower brick, a gap).
   kCrease,       ///< The surface bends away at the edge without a jump (the brick's side face seen obliquely).
   kSeam,         ///< The plane continues, but a groove in depth runs along the edge (touching faces).
-  kColourLine,   ///< The plane continues with a dark line along the edge but no groove: a seam
-                 ///< between touching plates of one colour, or just print on a box.
+  kColourLine,   ///< The plane continues with a line (darker or brighter) along the edge but no
+                 ///< groove: a seam between touching plates of one colour, or just print on a box.
   kOcclusion,    ///< A nearer surface lies beyond the edge: the face may continue under it.
   kImageBorder,  ///< The edge runs along the image border: the face may continue outside the image.
   kMaskEdge,     ///< The plane continues beyond the edge with nothing marking it (a mask or split boundary).
   kNoDepth,      ///< Too little depth beyond the edge to tell.
+  kOverrun,      ///< Inside the edge the pixels are off the face's plane: the mask runs over the
+                 ///< face's edge (onto a side face of the same colour), so the edge is not the face's.
 };
 
 /// True for the kinds that show where a brick ends: a step down, a crease,
@@ -75,7 +77,8 @@ struct EdgeEvidenceParams
   /// Seam tests on a coplanar continuation: a groove (the middle of the
   /// profile farther than both sides) at least this deep, or a dark line at
   /// least this many grey levels darker than both sides; each also at least
-  /// seam_noise_factor standard errors of the along-edge scatter.
+  /// seam_noise_factor standard errors of the along-edge scatter. (Lines
+  /// count either way: darker or brighter than both sides.)
   double min_groove_m = 0.0008;
   double min_line_contrast = 6.0;
   double seam_noise_factor = 3.0;
@@ -94,7 +97,7 @@ struct EdgeEvidence
   /// = below it.
   double outside_offset_m = 0.0;
   double groove_m = 0.0;       ///< Depth of a groove along the edge (m, > 0 farther).
-  double line_contrast = 0.0;  ///< Grey levels the edge line is darker than both sides.
+  double line_contrast = 0.0;  ///< Grey levels the edge line is darker (or brighter) than both sides.
 };
 
 /// Classifies the edge from `a_px` to `b_px` of a face lying on `plane`;

@@ -136,14 +136,22 @@ private:
   /// edge is a seam (on printed boxes it may be print).
   void judgeCompleteness(const RgbdFrame& frame, const FrameContext& context, bool uniform_colour,
                          BrickCandidate& candidate) const;
+  /// A measured face larger than one brick, cut into bricks: tiled (see
+  /// tile()), or for a colour segment cut along its rows (see
+  /// splitSideBySide()); empty when neither finds two bricks.
+  std::optional<RoiOutcome> splitMerged(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                                        const FrameContext& context, CloudProcessingTimings* cloud_timings) const;
   /// Colour-free: whether the face is large enough for two of the smallest type.
   bool mayHoldTwoBricks(const BrickCandidate& candidate) const;
   /// The candidates and rejections of tiling a measured segment; empty
   /// when no tiling of two or more bricks was found (or, with
   /// `seams_required`, when any cut lacks a seen seam).
+  /// `tried` (optional) receives the tiling found, used or not;
+  /// `only_types` (optional) replaces the segment's types.
   std::optional<RoiOutcome> tile(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
                                  const FrameContext& context, bool seams_required,
-                                 CloudProcessingTimings* cloud_timings) const;
+                                 CloudProcessingTimings* cloud_timings, FaceTiling* tried = nullptr,
+                                 const std::vector<const BrickType*>* only_types = nullptr) const;
 
   BrickCatalogue catalogue_;
   RoiFilterParams params_;

@@ -19,6 +19,7 @@
 #include <Eigen/Core>
 
 #include "brick_pose/frame/rgbd_frame.h"
+#include "brick_pose/roi/up_direction.h"
 
 namespace brick_pose
 {
@@ -41,7 +42,7 @@ struct SideFaceParams
   double min_visible_m = 0.015;
   /// Heights agree within max(height_tolerance_m, height_tolerance_fraction * height).
   double height_tolerance_m = 0.02;
-  double height_tolerance_fraction = 0.15;
+  double height_tolerance_fraction = 0.2;
   /// Places along the edge where the side is marched.
   int columns = 7;
 
@@ -52,7 +53,11 @@ struct SideFaceParams
 struct SideFaceEvidence
 {
   bool visible = false;      ///< A side surface runs down from the edge.
-  bool foot_seen = false;    ///< ... and is seen to its foot (not hidden or out of view before).
+  bool foot_seen = false;    ///< ... and is seen to its foot: a nearer surface at the level where it ends.
+  /// ... and that surface is the frame's supporting plane (the ground, a
+  /// table): the side reaches it, so its height is the brick's (any other
+  /// surface may be a lower neighbour in front, hiding the rest).
+  bool foot_on_support = false;
   double visible_height_m = 0.0;  ///< Median height seen (to the foot when foot_seen).
 };
 
@@ -62,12 +67,14 @@ struct SideFaceEvidence
 /// up when the face is level: a narrow top's own normal may be a few degrees
 /// off, which over 20 cm of side leaves the side plane.
 SideFaceEvidence measureSideFace(const RgbdFrame& frame, const std::array<Eigen::Vector3d, 4>& corners_m,
-                                 const Eigen::Vector3d& up, int edge, double max_height_m,
+                                 const Eigen::Vector3d& up, int edge, double max_height_m, const UpDirection& support,
                                  const SideFaceParams& params = SideFaceParams());
 
 /// The side compared with a brick of `height_m`: a side seen to its foot
 /// matches when it is one, two or three heights tall (bricks stacked flush
-/// below show one wall of sides).
+/// below show one wall of sides); it contradicts the height when it reaches
+/// the supporting plane at another height, or is taller. A shorter side
+/// ending on another surface is only cut short.
 SideFaceVerdict judgeSideFace(const SideFaceEvidence& side, double height_m,
                               const SideFaceParams& params = SideFaceParams());
 

@@ -31,10 +31,21 @@ struct UpDirection
 {
   Eigen::Vector3d up = Eigen::Vector3d::Zero();  ///< Unit, camera frame; zero when unknown.
   UpSource source = UpSource::kUnknown;
-  /// Share of the sampled depth pixels on the supporting plane (kSupportPlane).
+  /// The dominant plane of the frame (the ground, a table), when it was
+  /// found: unit normal toward the camera and offset (normal . p + offset =
+  /// 0), and the share of the sampled depth pixels on it. Side faces that
+  /// reach it are seen to the brick's foot.
+  bool has_support_plane = false;
+  Eigen::Vector3d support_normal = Eigen::Vector3d::Zero();
+  double support_offset_m = 0.0;
   double support_fraction = 0.0;
 
   bool known() const { return source != UpSource::kUnknown; }
+  /// Signed distance of a point above the supporting plane (0 without one).
+  double heightAboveSupport(const Eigen::Vector3d& point_m) const
+  {
+    return has_support_plane ? support_normal.dot(point_m) + support_offset_m : 0.0;
+  }
 };
 
 struct UpDirectionParams
@@ -57,9 +68,9 @@ struct UpDirectionParams
   void validate() const;  ///< Throws ConfigError naming the field.
 };
 
-/// The dominant plane's normal (oriented toward the camera) as "up", or
-/// unknown when no plane holds min_support_fraction of the samples.
-/// Deterministic (fixed seed).
+/// The dominant plane's normal (oriented toward the camera) as "up", with
+/// the plane itself; unknown when no plane holds min_support_fraction of the
+/// samples. Deterministic (fixed seed).
 UpDirection estimateSupportPlaneUp(const RgbdFrame& frame, const UpDirectionParams& params = UpDirectionParams());
 
 /// The mean normal of the heaviest cluster of `normals` (unit, toward the

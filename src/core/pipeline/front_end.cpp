@@ -125,8 +125,21 @@ void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>
 FrameContext FrontEnd::frameContext(const RgbdFrame& frame, const std::vector<Segment>& segments) const
 {
   FrameContext context = roi_filter_.defaultContext();
-  if (context.up.known()) return context;
-  context.up = estimateSupportPlaneUp(frame, params_.up);
+  const UpDirection support = estimateSupportPlaneUp(frame, params_.up);
+  if (context.up.known())
+  {
+    // Up from tf; the dominant plane is the support when it is level.
+    constexpr double kLevelCos = 0.966;  // 15 deg
+    if (support.known() && support.up.dot(context.up.up) >= kLevelCos)
+    {
+      context.up.has_support_plane = true;
+      context.up.support_normal = support.support_normal;
+      context.up.support_offset_m = support.support_offset_m;
+      context.up.support_fraction = support.support_fraction;
+    }
+    return context;
+  }
+  context.up = support;
   if (context.up.known() || segments.empty()) return context;
   // No plane dominates the view (a close-up of a pile): the tops of a pile
   // face one way, so the faces' area-weighted dominant normal is up.

@@ -12,6 +12,9 @@ namespace brick_pose
 namespace
 {
 constexpr float kMissing = std::numeric_limits<float>::quiet_NaN();
+/// Where the profile has no depth beyond the edge, the first depth out to
+/// this many probe widths stands in.
+constexpr int kFarReachFactor = 6;
 
 /// Depth (as signed distance from the face's plane) and grey level sampled
 /// on a grid of rows (positions along the edge) x columns (offsets across
@@ -156,7 +159,13 @@ SeamMeasure measureSeam(const Profile& profile, const EdgeEvidenceParams& params
   const std::vector<double> depth = columnMedians(profile, profile.offset_m);
   const std::vector<double> grey = columnMedians(profile, profile.grey);
   const double groove = largestDip(depth, profile.min_offset, params.seam_search_px, kSeamArm);
-  const double line = largestDip(grey, profile.min_offset, params.seam_search_px, kSeamArm);
+  // A line darker or brighter than both sides (a shadowed gap, or a gap
+  // showing a paler side face).
+  std::vector<double> inverted(grey.size());
+  for (std::size_t k = 0; k < grey.size(); ++k) inverted[k] = -grey[k];
+  const double dark = largestDip(grey, profile.min_offset, params.seam_search_px, kSeamArm);
+  const double bright = largestDip(inverted, profile.min_offset, params.seam_search_px, kSeamArm);
+  const double line = std::isnan(dark) ? bright : (std::isnan(bright) ? dark : std::max(dark, bright));
   seam.groove_m = std::isnan(groove) ? 0.0 : groove;
   seam.line_contrast = std::isnan(line) ? 0.0 : line;
   // The dip mixes three column medians; the median of n samples has about
@@ -198,8 +207,34 @@ double outsideInterceptM(const Profile& profile, int first_offset, int last_offs
   return (sy - slope * sx) / n;
 }
 
+/// Beyond the profile: the plane offset (m) of the first pixel with depth
+/// along a row, up to `reach_px` out (a stereo shadow beyond a step can be
+/// wider than the profile at close range); NaN when there is none.
+struct FarProbe
+{
+  const RgbdFrame& frame;
+  const PlaneFit& plane;
+  Eigen::Vector2d from_px, to_px, outward;
+  int rows;
+
+  double operator()(int row, int first_offset, int reach_px) const
+  {
+    const double t = rows == 1 ? 0.5 : static_cast<double>(row) / (rows - 1);
+    const Eigen::Vector2d on_edge = from_px + t * (to_px - from_px);
+    for (int offset = first_offset; offset <= reach_px; ++offset)
+    {
+      const Eigen::Vector2d p = on_edge + offset * outward;
+      const int u = static_cast<int>(std::lround(p.x())), v = static_cast<int>(std::lround(p.y()));
+      if (u < 0 || v < 0 || u >= frame.width_px() || v >= frame.height_px()) break;
+      const float z = frame.depthAt(u, v);
+      if (!std::isnan(z)) return plane.signedDistance(frame.camera.backProject(u, v, z));
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+};
+
 /// Judges one stretch of an edge from its profile.
-EdgeEvidence judgeStretch(const Profile& profile, double step_m, const EdgeEvidenceParams& params)
+EdgeEvidence judgeStretch(const Profile& profile, const FarProbe& far, double step_m, const EdgeEvidenceParams& params)
 {
   EdgeEvidence evidence;
   const int first_outside = params.inner_gap_px + 1;
@@ -228,8 +263,13 @@ EdgeEvidence judgeStretch(const Profile& profile, double step_m, const EdgeEvide
     }
     if (sample_values.size() < 2)
     {
-      ++missing;
-      continue;
+      const double beyond = far(row, profile.max_offset + 1, kFarReachFactor * params.probe_px);
+      if (std::isnan(beyond))
+      {
+        ++missing;
+        continue;
+      }
+      sample_values.assign(2, beyond);
     }
     const double outside = median(sample_values);
     outside_values.push_back(outside);
@@ -237,10 +277,20 @@ EdgeEvidence judgeStretch(const Profile& profile, double step_m, const EdgeEvide
     else if (outside < -step_m) ++below;
     else ++coplanar;
   }
+  // Inside the edge the face must be on its plane.
+  std::vector<double> inside_values;
+  for (int row = 0; row < profile.rows; ++row)
+    for (int offset = profile.min_offset; offset < -params.inner_gap_px; ++offset)
+    {
+      const float value = profile.offset_m[profile.at(row, offset)];
+      if (!std::isnan(value)) inside_values.push_back(value);
+    }
+  const double inside = inside_values.empty() ? 0.0 : median(inside_values);
   const double rows = std::max(1, profile.rows);
   evidence.outside_offset_m = outside_values.empty() ? 0.0 : median(outside_values);
   const int with_depth = above + below + coplanar;
   if (border >= params.max_border_fraction * rows) evidence.kind = EdgeKind::kImageBorder;
+  else if (std::abs(inside) > step_m) evidence.kind = EdgeKind::kOverrun;
   // A quarter of nearer samples is an occluder over part of the stretch.
   else if (above * 4 >= with_depth + missing && above > 0) evidence.kind = EdgeKind::kOcclusion;
   else if (with_depth < params.min_depth_fraction * (rows - border)) evidence.kind = EdgeKind::kNoDepth;
@@ -271,6 +321,7 @@ int badness(EdgeKind kind)
     case EdgeKind::kImageBorder: return 8;
     case EdgeKind::kOcclusion: return 7;
     case EdgeKind::kNoDepth: return 6;
+    case EdgeKind::kOverrun: return 6;
     case EdgeKind::kMaskEdge: return 5;
     case EdgeKind::kUnknown: return 4;
     case EdgeKind::kColourLine: return 3;
@@ -300,6 +351,7 @@ std::string toString(EdgeKind kind)
     case EdgeKind::kImageBorder: return "image border";
     case EdgeKind::kMaskEdge: return "continuing plane (no edge seen)";
     case EdgeKind::kNoDepth: return "edge without depth beyond it";
+    case EdgeKind::kOverrun: return "mask running over the face's edge";
     case EdgeKind::kUnknown:
     default: return "unexamined edge";
   }
@@ -349,7 +401,8 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
     // leaves the first pixels without depth.
     const Profile profile =
         sampleProfile(frame, plane, from, to, outward, -params.probe_px, 2 * params.probe_px, params.sample_spacing_px);
-    EdgeEvidence stretch = judgeStretch(profile, step_m, params);
+    const FarProbe far{frame, plane, from, to, outward, profile.rows};
+    EdgeEvidence stretch = judgeStretch(profile, far, step_m, params);
     if (first || badness(stretch.kind) > badness(worst.kind)) worst = stretch;
     first = false;
   }

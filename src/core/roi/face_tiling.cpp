@@ -340,9 +340,22 @@ private:
           if (inside < 0 || inside >= across_limit) continue;
           for (const int slide : {1, -1})
           {
-            // The first run of two untiled cells next to the line.
+            // The first two columns mostly untiled over the band of rows next
+            // to the line (one row alone follows every ragged or slightly
+            // tilted outline pixel).
+            auto bandFree = [&](int along) {
+              int count = 0, rows = 0;
+              for (int depth = 0; depth < kAnchorBand; ++depth)
+              {
+                const int across = inside + grow * depth;
+                if (across < 0 || across >= across_limit) break;
+                ++rows;
+                count += freeAt(along, across) ? 1 : 0;
+              }
+              return rows > 0 && count * 4 >= rows * 3;
+            };
             int at = slide > 0 ? 0 : along_limit - 1;
-            while (at >= 0 && at < along_limit && !(freeAt(at, inside) && freeAt(at + slide, inside))) at += slide;
+            while (at >= 0 && at < along_limit && !(bandFree(at) && bandFree(at + slide))) at += slide;
             if (at < 0 || at >= along_limit) continue;
             // The line must bound the region there.
             if (freeAt(at, outside) && freeAt(at + slide, outside)) continue;
@@ -562,6 +575,8 @@ private:
   }
 
   static constexpr double kBoundaryStrength = 6.0;
+  /// Rows next to a line that decide where a tile may start along it.
+  static constexpr int kAnchorBand = 4;
 
   /// Depth samples within this of the plane are on it.
   static double onPlaneM(const PlaneGrid& grid, const EdgeEvidenceParams& params)

@@ -18,6 +18,9 @@ namespace brick_pose
 namespace
 {
 constexpr double kPi = 3.14159265358979323846;
+/// A colour-free face that smaller catalogue tops cover this well (all but
+/// this share) may be those bricks touching.
+constexpr double kMaxUntiledForAlternative = 0.1;
 
 std::string describe(const std::string& what, double value, const std::string& rule, double limit)
 {
@@ -100,6 +103,7 @@ std::string edgeReason(int edge, EdgeKind kind)
     case EdgeKind::kOcclusion: return name + " is an occlusion boundary";
     case EdgeKind::kMaskEdge: return name + " continues on the same plane: no step, crease or seam seen";
     case EdgeKind::kNoDepth: return name + " has no depth beyond it";
+    case EdgeKind::kOverrun: return name + " is not the face's: the segment runs over it onto another surface";
     case EdgeKind::kColourLine:
       return name + " is only a line in the colour image (print on a box?): no step, crease or groove seen";
     default: return name + " was not examined";
@@ -232,17 +236,39 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
   if (!reason) reason = assignType(frame, context, segment, candidate);
   if (!reason)
   {
-    // Colour-free: a face of one brick's size may be two smaller bricks
-    // end to end; only seams seen along every cut say so.
+    // Colour-free: a face of one brick's size may be smaller bricks end to
+    // end. Grooves along every cut say it is. Without them it stays unsure:
+    // the seam between touching boxes can be too faint to see, so nothing
+    // rules the smaller bricks out.
+    FaceTiling alternative;
     if (segment.type_name.empty() && mayHoldTwoBricks(candidate))
-      if (std::optional<RoiOutcome> tiled = tile(frame, segment, candidate, context, true, cloud_timings)) return *tiled;
+    {
+      // The smaller types only: the face's own type would tile it whole.
+      const BrickType* own = catalogue_.find(candidate.type_name);
+      std::vector<const BrickType*> smaller;
+      for (const BrickType& type : catalogue_.types())
+        if (own && type.length_m * type.width_m < 0.7 * own->length_m * own->width_m) smaller.push_back(&type);
+      if (!smaller.empty())
+        if (std::optional<RoiOutcome> tiled =
+                tile(frame, segment, candidate, context, true, cloud_timings, &alternative, &smaller))
+          return *tiled;
+    }
     judgeCompleteness(frame, context, !segment.type_name.empty(), candidate);
+    if (candidate.complete && alternative.tiles.size() >= 2 &&
+        alternative.untiled_fraction <= kMaxUntiledForAlternative)
+    {
+      candidate.complete = false;
+      candidate.partial_reason = "its size is also " + std::to_string(alternative.tiles.size()) + " smaller " +
+                                 "catalogue tops touching (" + alternative.tiles.front().type_name + ", ...)" +
+                                 (alternative.seen_cuts > 0 ? ", and a line crosses it where they would meet"
+                                                            : ": without colour no seam can be ruled out");
+    }
     outcome.candidates.push_back(std::move(candidate));
     return outcome;
   }
   // Planar and facing up but no single brick: touching bricks merged.
   if (measured)
-    if (std::optional<RoiOutcome> tiled = tile(frame, segment, candidate, context, false, cloud_timings)) return *tiled;
+    if (std::optional<RoiOutcome> split = splitMerged(frame, segment, candidate, context, cloud_timings)) return *split;
   // Plates at two heights joined through an edge without a clean depth jump
   // give one bent "plane": split where the depth steps, then filter (and
   // tile) each part.
@@ -267,13 +293,43 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
       continue;
     }
     if (part_measured)
-      if (std::optional<RoiOutcome> tiled = tile(frame, part, part_candidate, context, false, cloud_timings))
+      if (std::optional<RoiOutcome> split = splitMerged(frame, part, part_candidate, context, cloud_timings))
       {
-        std::move(tiled->candidates.begin(), tiled->candidates.end(), std::back_inserter(outcome.candidates));
-        std::move(tiled->rejections.begin(), tiled->rejections.end(), std::back_inserter(outcome.rejections));
+        std::move(split->candidates.begin(), split->candidates.end(), std::back_inserter(outcome.candidates));
+        std::move(split->rejections.begin(), split->rejections.end(), std::back_inserter(outcome.rejections));
         continue;
       }
     outcome.rejections.push_back("part of a split segment: " + *part_reason);
+  }
+  return outcome;
+}
+
+std::optional<RoiOutcome> RoiFilter::splitMerged(const RgbdFrame& frame, const Segment& segment,
+                                                 const BrickCandidate& measured, const FrameContext& context,
+                                                 CloudProcessingTimings* cloud_timings) const
+{
+  if (std::optional<RoiOutcome> tiled = tile(frame, segment, measured, context, false, cloud_timings)) return tiled;
+  // Rows of one colour whose bricks are not quite parallel (a wedge of gap
+  // between them) fit no rectangles on the merged quad's axes: cut them
+  // along their length, evenly or through the visible end of a gap.
+  if (segment.type_name.empty()) return std::nullopt;
+  std::vector<Segment> parts;
+  if (const BrickType* type = catalogue_.find(segment.type_name))
+    parts = splitSideBySide(frame, segment, measured, *type, params_.dimensions.tolerance_m);
+  if (parts.empty()) return std::nullopt;
+  RoiOutcome outcome;
+  for (const Segment& part : parts)
+  {
+    BrickCandidate candidate;
+    std::optional<std::string> reason = measure(frame, part, context, cloud_timings, candidate);
+    if (!reason) reason = assignType(frame, context, part, candidate);
+    if (reason)
+    {
+      outcome.rejections.push_back("part of a split segment: " + *reason);
+      continue;
+    }
+    judgeCompleteness(frame, context, true, candidate);
+    outcome.candidates.push_back(std::move(candidate));
   }
   return outcome;
 }
@@ -287,9 +343,10 @@ bool RoiFilter::mayHoldTwoBricks(const BrickCandidate& candidate) const
 
 std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
                                           const FrameContext& context, bool seams_required,
-                                          CloudProcessingTimings* cloud_timings) const
+                                          CloudProcessingTimings* cloud_timings, FaceTiling* tried,
+                                          const std::vector<const BrickType*>* only_types) const
 {
-  const std::vector<const BrickType*> types = typesFor(catalogue_, segment.type_name);
+  const std::vector<const BrickType*> types = only_types ? *only_types : typesFor(catalogue_, segment.type_name);
   if (types.empty()) return std::nullopt;
   const bool typed_by_size = segment.type_name.empty();
   // Without colour, a large plane is as likely the ground or a table as a
@@ -303,9 +360,12 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   }
   FaceTiling tiling =
       tileFace(frame, segment, measured, types, params_.dimensions.tolerance_m, params_.tiling, params_.edges);
+  if (tried) *tried = tiling;
   if (tiling.tiles.size() < 2) return std::nullopt;
-  // A face of one brick's size is only cut where every cut dents the depth.
-  if (seams_required && (tiling.cuts == 0 || tiling.grooved_cuts < tiling.cuts)) return std::nullopt;
+  // Without colour every cut must dent the depth (print draws lines on
+  // boxes; only a gap between two of them dents the depth): a cut made from
+  // sizes alone would also make up the type of the bricks it separates.
+  if ((seams_required || typed_by_size) && (tiling.cuts == 0 || tiling.grooved_cuts < tiling.cuts)) return std::nullopt;
   RoiOutcome outcome;
   for (FaceTile& tile : tiling.tiles)
   {
@@ -471,13 +531,20 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
       if (candidate.edge_kinds[k] == EdgeKind::kStepDown || candidate.edge_kinds[k] == EdgeKind::kCrease)
       {
         const SideFaceEvidence side =
-            measureSideFace(frame, candidate.corners_m, sideAxis(candidate, context), k, tallest_m, params_.sides);
+            measureSideFace(frame, candidate.corners_m, sideAxis(candidate, context), k, tallest_m, context.up,
+                            params_.sides);
         if (std::getenv("BRICK_POSE_DEBUG_SIDES"))
           std::fprintf(stderr, "face %.3f x %.3f edge %d (%s): visible %d foot %d height %.3f\n", candidate.length_m,
                        candidate.width_m, k, toString(candidate.edge_kinds[k]).c_str(), side.visible, side.foot_seen,
                        side.visible_height_m);
         if (side.foot_seen) sides.push_back(side);
       }
+  // Sides reaching the supporting plane are the surest; without one, a side
+  // ending on another level surface (a box it stands on) still tells.
+  if (std::any_of(sides.begin(), sides.end(), [](const SideFaceEvidence& side) { return side.foot_on_support; }))
+    sides.erase(std::remove_if(sides.begin(), sides.end(),
+                               [](const SideFaceEvidence& side) { return !side.foot_on_support; }),
+                sides.end());
   const BrickType* best = nullptr;
   double best_error_m = std::numeric_limits<double>::max();
   for (const BrickType* type : fitting)
@@ -514,8 +581,8 @@ void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& co
   }
   // Edges that hide where the brick ends say the most: the border and
   // occluders first, then planes that continue, then missing depth.
-  for (const EdgeKind kind : {EdgeKind::kImageBorder, EdgeKind::kOcclusion, EdgeKind::kMaskEdge, EdgeKind::kNoDepth,
-                              EdgeKind::kUnknown, EdgeKind::kColourLine})
+  for (const EdgeKind kind : {EdgeKind::kImageBorder, EdgeKind::kOcclusion, EdgeKind::kOverrun, EdgeKind::kMaskEdge,
+                              EdgeKind::kNoDepth, EdgeKind::kUnknown, EdgeKind::kColourLine})
     for (int k = 0; k < 4; ++k)
       if (candidate.edge_kinds[k] == kind && !isRealEdge(kind, uniform_colour))
       {
@@ -544,7 +611,8 @@ void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& co
   {
     if (candidate.edge_kinds[k] != EdgeKind::kStepDown && candidate.edge_kinds[k] != EdgeKind::kCrease) continue;
     const SideFaceEvidence side =
-        measureSideFace(frame, candidate.corners_m, sideAxis(candidate, context), k, type->height_m, params_.sides);
+        measureSideFace(frame, candidate.corners_m, sideAxis(candidate, context), k, type->height_m, context.up,
+                        params_.sides);
     if (judgeSideFace(side, type->height_m, params_.sides) != SideFaceVerdict::kMismatch) continue;
     std::ostringstream text;
     text.precision(3);

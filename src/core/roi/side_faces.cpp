@@ -21,6 +21,7 @@ struct Run
 {
   double height_m = 0.0;
   RunEnd end = RunEnd::kNone;
+  bool on_support = false;  // the foot is the supporting plane
 };
 
 double median(std::vector<double> values)
@@ -32,7 +33,8 @@ double median(std::vector<double> values)
 
 /// Marches down the side plane from `top_m` (a point of the edge).
 Run marchDown(const RgbdFrame& frame, const Eigen::Vector3d& top_m, const Eigen::Vector3d& down,
-              const Eigen::Vector3d& outward, double max_height_m, const SideFaceParams& params)
+              const Eigen::Vector3d& outward, double max_height_m, const UpDirection& support,
+              const SideFaceParams& params)
 {
   // The side is followed where it is, not where the quad says: the mask's
   // edge may lie a few millimetres off the true edge (depth bleeding over
@@ -98,6 +100,8 @@ Run marchDown(const RgbdFrame& frame, const Eigen::Vector3d& top_m, const Eigen:
     const double level_tolerance_m = std::max(params.plane_tolerance_m, 4.0 * step_m);
     run.end = z < on_side.z() && std::abs(below_top_m - run.height_m) <= level_tolerance_m ? RunEnd::kFoot
                                                                                             : RunEnd::kHidden;
+    run.on_support = run.end == RunEnd::kFoot && support.has_support_plane &&
+                     std::abs(support.heightAboveSupport(point)) <= level_tolerance_m;
     return run;
   }
   // Still on the side at the end of the march: taller than searched.
@@ -133,7 +137,7 @@ void SideFaceParams::validate() const
 }
 
 SideFaceEvidence measureSideFace(const RgbdFrame& frame, const std::array<Eigen::Vector3d, 4>& corners_m,
-                                 const Eigen::Vector3d& up, int edge, double max_height_m,
+                                 const Eigen::Vector3d& up, int edge, double max_height_m, const UpDirection& support,
                                  const SideFaceParams& params)
 {
   SideFaceEvidence evidence;
@@ -149,13 +153,16 @@ SideFaceEvidence measureSideFace(const RgbdFrame& frame, const std::array<Eigen:
   if (outward.dot(-a) / a.norm() < 0.05) return evidence;
 
   std::vector<double> feet, any;
+  std::size_t grounded = 0;
   for (int column = 0; column < params.columns; ++column)
   {
     const double t = 0.2 + 0.6 * column / (params.columns - 1);
-    const Run run = marchDown(frame, a + t * (b - a), down, outward, params.search_factor * max_height_m, params);
+    const Run run =
+        marchDown(frame, a + t * (b - a), down, outward, params.search_factor * max_height_m, support, params);
     if (run.end == RunEnd::kNone || run.height_m < params.min_visible_m) continue;
     any.push_back(run.height_m);
     if (run.end == RunEnd::kFoot) feet.push_back(run.height_m);
+    grounded += run.on_support ? 1 : 0;
   }
   if (any.size() * 3 < static_cast<std::size_t>(params.columns)) return evidence;
   evidence.visible = true;
@@ -163,6 +170,7 @@ SideFaceEvidence measureSideFace(const RgbdFrame& frame, const std::array<Eigen:
   if (feet.size() * 3 >= static_cast<std::size_t>(params.columns))
   {
     evidence.foot_seen = true;
+    evidence.foot_on_support = grounded * 2 > feet.size();
     evidence.visible_height_m = median(feet);
   }
   return evidence;
@@ -176,6 +184,7 @@ SideFaceVerdict judgeSideFace(const SideFaceEvidence& side, double height_m, con
   const double tolerance_m = std::max(params.height_tolerance_m, params.height_tolerance_fraction * height_m);
   for (int layers = 1; layers <= 3; ++layers)
     if (std::abs(side.visible_height_m - layers * height_m) <= tolerance_m) return SideFaceVerdict::kMatches;
-  return SideFaceVerdict::kMismatch;
+  if (side.foot_on_support || side.visible_height_m > height_m + tolerance_m) return SideFaceVerdict::kMismatch;
+  return SideFaceVerdict::kCutShort;
 }
 }  // namespace brick_pose

@@ -132,6 +132,9 @@ UpDirection estimateSupportPlaneUp(const RgbdFrame& frame, const UpDirectionPara
   if (result.support_fraction < params.min_support_fraction) return result;
   result.up = normal.normalized();
   result.source = UpSource::kSupportPlane;
+  result.has_support_plane = true;
+  result.support_normal = result.up;
+  result.support_offset_m = -result.up.dot(centroid);
   return result;
 }
 
