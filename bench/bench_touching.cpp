@@ -40,7 +40,7 @@
 #include "brick_pose/common/statistics.h"
 #include "brick_pose/frame/frame_builder.h"
 #include "brick_pose/pipeline/front_end.h"
-#include "brick_pose/roi/candidate_overlay.h"
+#include "brick_pose/pipeline/candidate_overlay.h"
 #include "brick_pose/sim/fast_random.h"
 #include "brick_pose/sim/scene_generator.h"
 #include "brick_pose/sim/synthetic_rig.h"

@@ -119,7 +119,9 @@ struct SeamScore
   /// Best of the two, in standard errors of its along-line scatter.
   double strength = 0.0;
   int samples = 0;
-  bool seen = false;
+  bool groove_seen = false;  ///< The groove clears min_groove_m and seam_noise_factor standard errors.
+  bool line_seen = false;    ///< The line clears min_line_contrast and seam_noise_factor standard errors.
+  bool seen = false;         ///< Either.
 };
 SeamScore scoreSeam(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
                     const Eigen::Vector2d& b_px, const EdgeEvidenceParams& params = EdgeEvidenceParams());

@@ -290,7 +290,10 @@ EdgeEvidence judgeStretch(const Profile& profile, const FarProbe& far, double st
   evidence.outside_offset_m = outside_values.empty() ? 0.0 : median(outside_values);
   const int with_depth = above + below + coplanar;
   if (border >= params.max_border_fraction * rows) evidence.kind = EdgeKind::kImageBorder;
-  else if (std::abs(inside) > step_m) evidence.kind = EdgeKind::kOverrun;
+  // Inside the edge but below the face's plane: the mask ran over the
+  // face's edge onto a side face. (Above it is a cover lying across the
+  // face; the outside band tells about that.)
+  else if (inside < -step_m) evidence.kind = EdgeKind::kOverrun;
   // A quarter of nearer samples is an occluder over part of the stretch.
   else if (above * 4 >= with_depth + missing && above > 0) evidence.kind = EdgeKind::kOcclusion;
   else if (with_depth < params.min_depth_fraction * (rows - border)) evidence.kind = EdgeKind::kNoDepth;
@@ -425,7 +428,9 @@ SeamScore scoreSeam(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::
   const double groove_strength = seam.groove_m / std::max(seam.groove_se, 0.25 * params.min_groove_m);
   const double line_strength = seam.line_contrast / std::max(seam.line_se, 0.25 * params.min_line_contrast);
   score.strength = std::max(groove_strength, line_strength);
-  score.seen = grooveSeen(seam, params) || lineSeen(seam, params);
+  score.groove_seen = grooveSeen(seam, params);
+  score.line_seen = lineSeen(seam, params);
+  score.seen = score.groove_seen || score.line_seen;
   return score;
 }
 }  // namespace brick_pose

@@ -662,12 +662,25 @@ FaceTiling tileFace(const RgbdFrame& frame, const Segment& segment, const BrickC
     // Corners in rectangle order (s = i0 edge first), matching `cut`.
     face.corners_m = {grid.point(r.i0, r.j1), grid.point(r.i0, r.j0), grid.point(r.i1, r.j0), grid.point(r.i1, r.j1)};
     face.cut = tile.cut;
+    std::array<bool, 4> groove = tile.groove;
     face.seam_seen = tile.seen;
     for (int k = 0; k < 4; ++k)
     {
-      tiling.cuts += tile.cut[k] ? 1 : 0;
-      tiling.seen_cuts += tile.cut[k] && tile.seen[k] ? 1 : 0;
-      tiling.grooved_cuts += tile.cut[k] && tile.groove[k] ? 1 : 0;
+      if (!tile.cut[k] || !tile.seen[k]) continue;
+      // The tiler picked this line as the best of several near the nominal
+      // cut, so its own score is the largest of several noisy ones: the
+      // seam must also pass the edge test along the cut itself, whose
+      // standard error comes from the scatter along the line.
+      const SeamScore seam = scoreSeam(frame, measured.plane, frame.camera.project(face.corners_m[k]),
+                                       frame.camera.project(face.corners_m[(k + 1) % 4]), evidence_params);
+      face.seam_seen[k] = seam.seen;
+      groove[k] = groove[k] && seam.groove_seen;
+    }
+    for (int k = 0; k < 4; ++k)
+    {
+      tiling.cuts += face.cut[k] ? 1 : 0;
+      tiling.seen_cuts += face.cut[k] && face.seam_seen[k] ? 1 : 0;
+      tiling.grooved_cuts += face.cut[k] && groove[k] ? 1 : 0;
     }
     face.segment = tileSegment(frame, segment, face.corners_m);
     tiling.tiles.push_back(std::move(face));

@@ -237,9 +237,9 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
   if (!reason)
   {
     // Colour-free: a face of one brick's size may be smaller bricks end to
-    // end. Grooves along every cut say it is. Without them it stays unsure:
-    // the seam between touching boxes can be too faint to see, so nothing
-    // rules the smaller bricks out.
+    // end. Grooves along every cut say it is. A line (or a groove too faint
+    // to cut on) where they would meet leaves it unsure: partial. With
+    // nothing at all seen there it is taken as one brick.
     FaceTiling alternative;
     if (segment.type_name.empty() && mayHoldTwoBricks(candidate))
     {
@@ -254,14 +254,13 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
           return *tiled;
     }
     judgeCompleteness(frame, context, !segment.type_name.empty(), candidate);
-    if (candidate.complete && alternative.tiles.size() >= 2 &&
+    if (candidate.complete && alternative.tiles.size() >= 2 && alternative.seen_cuts > 0 &&
         alternative.untiled_fraction <= kMaxUntiledForAlternative)
     {
       candidate.complete = false;
       candidate.partial_reason = "its size is also " + std::to_string(alternative.tiles.size()) + " smaller " +
                                  "catalogue tops touching (" + alternative.tiles.front().type_name + ", ...)" +
-                                 (alternative.seen_cuts > 0 ? ", and a line crosses it where they would meet"
-                                                            : ": without colour no seam can be ruled out");
+                                 ", and a line crosses it where they would meet";
     }
     outcome.candidates.push_back(std::move(candidate));
     return outcome;
