@@ -84,6 +84,11 @@ struct EdgeEvidenceParams
   double seam_noise_factor = 3.0;
   /// The seam may lie this many pixels off the fitted edge.
   int seam_search_px = 3;
+  /// Inside the edge, the face's pixels lying between min_step_m and this
+  /// far below its plane are a side face the mask ran onto (kOverrun);
+  /// farther below is a hole in a joined face (the ground seen between two
+  /// pieces of one plate under a cover), judged by what lies beyond.
+  double max_overrun_m = 0.06;
 
   void validate() const;  ///< Throws ConfigError naming the field.
 };

@@ -115,6 +115,7 @@ FrontEndParams frontEndParamsFrom(const ParamLookup& lookup)
   read.number("edge_min_groove_m", params.roi.edges.min_groove_m);
   read.number("edge_min_line_contrast", params.roi.edges.min_line_contrast);
   read.number("edge_seam_noise_factor", params.roi.edges.seam_noise_factor);
+  read.number("edge_max_overrun_m", params.roi.edges.max_overrun_m);
   read.number("tiling_min_seam_strength", params.roi.tiling.min_seam_strength);
   read.number("side_height_tolerance_m", params.roi.sides.height_tolerance_m);
   read.number("side_height_tolerance_fraction", params.roi.sides.height_tolerance_fraction);
@@ -175,6 +176,7 @@ std::map<std::string, std::string> pipelineParamsInEffect(const ParamLookup& loo
       {"edge_min_groove_m", text(front_end.roi.edges.min_groove_m)},
       {"edge_min_line_contrast", text(front_end.roi.edges.min_line_contrast)},
       {"edge_seam_noise_factor", text(front_end.roi.edges.seam_noise_factor)},
+      {"edge_max_overrun_m", text(front_end.roi.edges.max_overrun_m)},
       {"tiling_min_seam_strength", text(front_end.roi.tiling.min_seam_strength)},
       {"side_height_tolerance_m", text(front_end.roi.sides.height_tolerance_m)},
       {"side_height_tolerance_fraction", text(front_end.roi.sides.height_tolerance_fraction)},

@@ -293,7 +293,7 @@ EdgeEvidence judgeStretch(const Profile& profile, const FarProbe& far, double st
   // Inside the edge but below the face's plane: the mask ran over the
   // face's edge onto a side face. (Above it is a cover lying across the
   // face; the outside band tells about that.)
-  else if (inside < -step_m) evidence.kind = EdgeKind::kOverrun;
+  else if (inside < -step_m && inside > -params.max_overrun_m) evidence.kind = EdgeKind::kOverrun;
   // A quarter of nearer samples is an occluder over part of the stretch.
   else if (above * 4 >= with_depth + missing && above > 0) evidence.kind = EdgeKind::kOcclusion;
   else if (with_depth < params.min_depth_fraction * (rows - border)) evidence.kind = EdgeKind::kNoDepth;
@@ -377,6 +377,7 @@ void EdgeEvidenceParams::validate() const
   require(min_groove_m > 0.0, "min_groove_m", "must be > 0");
   require(min_line_contrast > 0.0, "min_line_contrast", "must be > 0");
   require(seam_noise_factor >= 0.0, "seam_noise_factor", "must be >= 0");
+  require(max_overrun_m > min_step_m, "max_overrun_m", "must be > min_step_m");
   require(seam_search_px >= 0 && seam_search_px + kSeamArm <= probe_px, "seam_search_px",
           "must be in [0, probe_px - 3]");
 }
