@@ -293,13 +293,15 @@ RoiFilterParams centreSampledRoi()
   return params;
 }
 
-RoiResult filterScene(const test::PlateScene& scene, const RgbdFrame& frame, const RoiFilterParams& params = centreSampledRoi())
+RoiResult filterScene(const test::PlateScene& scene, const RgbdFrame& frame, RoiFilterParams params = centreSampledRoi())
 {
   const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
   const std::vector<Segment> segments = HsvSegmenter().segment(frame, catalogue);
   if (segments.size() != 1) return "expected one segment, got " + std::to_string(segments.size());
   CloudProcessorParams cloud;
   cloud.outlier_removal_enabled = false;
+  // Up is the plate's own normal (a top face) unless the caller says otherwise.
+  if (params.up_direction.norm() == 0.0) params.up_direction = scene.rotation.col(2);
   return RoiFilter(catalogue, params, cloud).filter(frame, segments.front());
 }
 
@@ -453,7 +455,7 @@ TEST(RoiFilter, UpDirectionRejectsSideFaces)
   params.up_direction = Eigen::Vector3d(0.0, -1.0, 0.0);  // camera looking horizontally, y down
   const RoiResult result = filterScene(scene, frame, params);
   ASSERT_TRUE(std::holds_alternative<std::string>(result));
-  EXPECT_NE(std::get<std::string>(result).find("tilt"), std::string::npos);
+  EXPECT_NE(std::get<std::string>(result).find("not a top face"), std::string::npos) << std::get<std::string>(result);
   params.up_direction = scene.rotation.col(2);  // the plate's own normal: a top face
   EXPECT_TRUE(std::holds_alternative<BrickCandidate>(filterScene(scene, frame, params)));
 }

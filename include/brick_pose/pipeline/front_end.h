@@ -13,6 +13,7 @@
 #include "brick_pose/frame/rgbd_frame.h"
 #include "brick_pose/roi/brick_candidate.h"
 #include "brick_pose/roi/roi_filter.h"
+#include "brick_pose/roi/up_direction.h"
 #include "brick_pose/segmentation/hsv_segmenter.h"
 #include "brick_pose/segmentation/region_growing_segmenter.h"
 
@@ -40,6 +41,8 @@ struct FrontEndParams
   /// so the voxel grid, SOR and MLS are optional extras.
   CloudProcessorParams cloud = defaultSegmentCloudParams();
   RoiFilterParams roi;
+  /// How "up" is found in a frame when roi.up_direction (tf) is not set.
+  UpDirectionParams up;
   /// An occluder lying across a plate splits it into pieces. Incomplete
   /// candidates of one type on one plane (normals within merge_max_angle_deg,
   /// each centroid within merge_max_offset_m of the other's plane) are
@@ -84,6 +87,8 @@ struct FrontEndResult
 {
   std::vector<BrickCandidate> candidates;
   std::vector<Rejection> rejections;
+  /// Which way was taken as up (and from what) for the top-face check.
+  UpDirection up;
   FrontEndTimings timings;
 };
 
@@ -106,8 +111,12 @@ public:
   const FrontEndParams& params() const { return params_; }
 
 private:
+  /// What the whole frame says before its segments are filtered one by
+  /// one: up from tf, else the supporting plane, else the faces' dominant
+  /// normal.
+  FrameContext frameContext(const RgbdFrame& frame, const std::vector<Segment>& segments) const;
   /// Joins pieces of one face (see FrontEndParams::merge_face_pieces).
-  void mergeFacePieces(const RgbdFrame& frame, FrontEndResult& result) const;
+  void mergeFacePieces(const RgbdFrame& frame, const FrameContext& context, FrontEndResult& result) const;
   /// Drops (as rejections) candidates below RoiFilterParams' minimum visible
   /// fraction once pieces are joined.
   void dropSmallPieces(FrontEndResult& result) const;

@@ -11,6 +11,7 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include "brick_pose/roi/edge_evidence.h"
 #include "brick_pose/roi/least_area_quad.h"
 #include "brick_pose/roi/oriented_bounding_box.h"
 #include "brick_pose/geometry/plane_fit.h"
@@ -61,15 +62,24 @@ struct BrickCandidate
   /// Area inside the segment's outline over the quad's area (1 for a whole,
   /// unoccluded face; lower for notched or irregular segments).
   double fill_ratio = 0.0;
-  /// Edge k (corner k to k+1) ends the visible face without being the
-  /// brick's edge: the image border or a closer surface (an occluder) lies
-  /// right outside it.
+  /// What lies beyond edge k (corner k to k+1): a real edge of the brick
+  /// (step down, crease, seam) or not (occlusion boundary, image border, a
+  /// plane that continues, no depth).
+  EdgeKinds edge_kinds{{EdgeKind::kUnknown, EdgeKind::kUnknown, EdgeKind::kUnknown, EdgeKind::kUnknown}};
+  /// Edge k ends the visible face without being the brick's edge because
+  /// the image border or a closer surface (an occluder) lies right outside
+  /// it (edge_kinds[k] is kImageBorder or kOcclusion).
   std::array<bool, 4> edge_truncated{{false, false, false, false}};
-  /// True when length and width match the catalogue type within tolerance
-  /// and no edge is truncated (false for a partly occluded face that was
-  /// still accepted).
+  /// Angle between the face's normal and the frame's up direction (deg);
+  /// NaN when up is unknown.
+  double tilt_from_up_deg = 0.0;
+  /// True only when the face is seen whole as a brick's top: length and
+  /// width match the catalogue type, it faces up, all four edges are real
+  /// edges, and any side face seen to its foot has the catalogue height.
   bool complete = false;
-  /// Why the face is not complete, for the user ("" when it is).
+  /// Why the face is not complete, for people ("edge 2 is an occlusion
+  /// boundary", "cut by the image border", "no side face of the catalogue
+  /// height seen: ..."); empty iff complete.
   std::string partial_reason;
 };
 }  // namespace brick_pose

@@ -17,6 +17,10 @@
 #include "brick_pose/cloud/cloud_processor.h"
 #include "brick_pose/frame/rgbd_frame.h"
 #include "brick_pose/roi/brick_candidate.h"
+#include "brick_pose/roi/edge_evidence.h"
+#include "brick_pose/roi/face_tiling.h"
+#include "brick_pose/roi/side_faces.h"
+#include "brick_pose/roi/up_direction.h"
 #include "brick_pose/segmentation/segment.h"
 
 namespace brick_pose
@@ -40,15 +44,18 @@ struct RoiFilterParams
   /// Colour-free segments must also fill their quad this well: pieces of
   /// the ground or of merged faces are not rectangles.
   double min_fill_ratio = 0.85;
-  /// Optional "up" direction (unit, camera frame, e.g. from tf). When set
-  /// (non-zero), faces whose normal is more than max_tilt_deg from it are not
-  /// top faces and are dropped.
+  /// "Up" (unit, camera frame, e.g. from tf through the nodelet's
+  /// up_frame). When zero, the front end estimates it per frame (see
+  /// up_direction.h). Faces whose normal is more than max_tilt_deg from up
+  /// are not top faces and are dropped.
   Eigen::Vector3d up_direction = Eigen::Vector3d::Zero();
-  /// Truncated-edge test: pixels this far outside a quad edge that are
-  /// closer than the face's plane by occluder_margin_m are an occluder.
-  double edge_probe_offset_px = 5.0;
-  double occluder_margin_m = 0.03;
   double max_tilt_deg = 30.0;
+  /// What lies beyond each edge of a face (complete needs four real edges).
+  EdgeEvidenceParams edges;
+  /// Cutting merged faces of touching bricks by tiling them with catalogue sizes.
+  FaceTilingParams tiling;
+  /// Side faces below the edges must have the catalogue height.
+  SideFaceParams sides;
   PlaneFitParams plane;
   QuadFitParams quad;
 
@@ -74,6 +81,13 @@ struct RoiOutcome
   std::vector<std::string> rejections;
 };
 
+/// What the front end decided about a whole frame before filtering its
+/// segments one by one.
+struct FrameContext
+{
+  UpDirection up;
+};
+
 class RoiFilter
 {
 public:
@@ -81,25 +95,63 @@ public:
   RoiFilter(const BrickCatalogue& catalogue, const RoiFilterParams& params, const CloudProcessorParams& cloud_params);
 
   /// Filters one segment. HSV segments are checked against their type;
-  /// colour-free ones are classified by their dimensions.
-  /// `cloud_timings` (optional) accumulates the cloud-processing time.
+  /// colour-free ones are classified by their dimensions. `context` says
+  /// which way is up; `cloud_timings` (optional) accumulates the
+  /// cloud-processing time.
+  RoiResult filter(const RgbdFrame& frame, const Segment& segment, const FrameContext& context,
+                   CloudProcessingTimings* cloud_timings = nullptr) const;
+  /// The same with up from RoiFilterParams::up_direction (unknown when zero).
   RoiResult filter(const RgbdFrame& frame, const Segment& segment, CloudProcessingTimings* cloud_timings = nullptr) const;
 
-  /// Like filter(), but a segment that measures as n >= 2 plates of its type
-  /// lying side by side (rows of an organised pile, whose gaps perspective
-  /// hides) is cut into n parts, each filtered on its own (see
-  /// splitSideBySide()); one that is not planar is split where its depth
-  /// steps (see splitAtDepthSteps()).
+  /// Like filter(), but a planar segment larger than one brick (touching
+  /// bricks of one colour and height merged into one face) is cut into
+  /// bricks by tiling it with catalogue sizes along the seams the image
+  /// shows (see face_tiling.h); a colour-free face of one brick's size whose
+  /// halves are split by seen seams is cut too; a segment that is not planar
+  /// is split where its depth steps (see splitAtDepthSteps()).
+  RoiOutcome filterSplitting(const RgbdFrame& frame, const Segment& segment, const FrameContext& context,
+                             CloudProcessingTimings* cloud_timings = nullptr) const;
   RoiOutcome filterSplitting(const RgbdFrame& frame, const Segment& segment,
                              CloudProcessingTimings* cloud_timings = nullptr) const;
 
+  /// The context filter() uses without one: up from the parameters.
+  FrameContext defaultContext() const;
+
+  const RoiFilterParams& params() const { return params_; }
+
 private:
   /// Points, plane, OBB and outline geometry; the reason when it fails.
-  std::optional<std::string> measure(const RgbdFrame& frame, const Segment& segment,
+  std::optional<std::string> measure(const RgbdFrame& frame, const Segment& segment, const FrameContext& context,
                                      CloudProcessingTimings* cloud_timings, BrickCandidate& candidate) const;
-  /// Quad, corners, T1/T2, centre and dimensions from the mask and the plane.
+  /// Quad, corners, T1/T2, centre, dimensions and edge evidence from the
+  /// mask and the plane.
   std::optional<std::string> fitOutline(const RgbdFrame& frame, const Segment& segment, BrickCandidate& candidate) const;
-  std::optional<std::string> assignType(const Segment& segment, BrickCandidate& candidate) const;
+  /// The type of a measured face: the segment's colour's (HSV), or the
+  /// catalogue size it matches (colour-free; when several fit, the one whose
+  /// height the sides seen below the face's edges agree with).
+  std::optional<std::string> assignType(const RgbdFrame& frame, const FrameContext& context, const Segment& segment,
+                                        BrickCandidate& candidate) const;
+  /// Sets `complete` and `partial_reason` of a typed candidate;
+  /// `uniform_colour`: found by its plate colour, so a dark line along an
+  /// edge is a seam (on printed boxes it may be print).
+  void judgeCompleteness(const RgbdFrame& frame, const FrameContext& context, bool uniform_colour,
+                         BrickCandidate& candidate) const;
+  /// A measured face larger than one brick, cut into bricks: tiled (see
+  /// tile()), or for a colour segment cut along its rows (see
+  /// splitSideBySide()); empty when neither finds two bricks.
+  std::optional<RoiOutcome> splitMerged(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                                        const FrameContext& context, CloudProcessingTimings* cloud_timings) const;
+  /// Colour-free: whether the face is large enough for two of the smallest type.
+  bool mayHoldTwoBricks(const BrickCandidate& candidate) const;
+  /// The candidates and rejections of tiling a measured segment; empty
+  /// when no tiling of two or more bricks was found (or, with
+  /// `seams_required`, when any cut lacks a seen seam).
+  /// `tried` (optional) receives the tiling found, used or not;
+  /// `only_types` (optional) replaces the segment's types.
+  std::optional<RoiOutcome> tile(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                                 const FrameContext& context, bool seams_required,
+                                 CloudProcessingTimings* cloud_timings, FaceTiling* tried = nullptr,
+                                 const std::vector<const BrickType*>* only_types = nullptr) const;
 
   BrickCatalogue catalogue_;
   RoiFilterParams params_;

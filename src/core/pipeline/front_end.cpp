@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "brick_pose/common/errors.h"
+#include "brick_pose/frame/organized_cloud.h"
 
 namespace brick_pose
 {
@@ -119,6 +120,7 @@ FrontEnd::FrontEnd(const BrickCatalogue& catalogue, const FrontEndParams& params
     region_growing_segmenter_(params.region_growing),
     roi_filter_(catalogue, pieceFilterParams(params), params.cloud)
 {
+  params_.up.validate();
 }
 
 std::vector<Segment> FrontEnd::segment(const RgbdFrame& frame) const
@@ -132,9 +134,11 @@ void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>
 {
   const auto roi_start = Clock::now();
   const double cloud_ms_before = result.timings.cloud.total();
+  const FrameContext context = frameContext(frame, segments);
+  result.up = context.up;
   for (const Segment& segment : segments)
   {
-    RoiOutcome outcome = roi_filter_.filterSplitting(frame, segment, &result.timings.cloud);
+    RoiOutcome outcome = roi_filter_.filterSplitting(frame, segment, context, &result.timings.cloud);
     std::move(outcome.candidates.begin(), outcome.candidates.end(), std::back_inserter(result.candidates));
     for (std::string& reason : outcome.rejections)
     {
@@ -142,9 +146,48 @@ void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>
       result.rejections.push_back({segment.type_name, segment.bounding_box_px, segment.area_px, std::move(reason), category});
     }
   }
-  if (params_.merge_face_pieces) mergeFacePieces(frame, result);
+  if (params_.merge_face_pieces) mergeFacePieces(frame, context, result);
   dropSmallPieces(result);
   result.timings.roi_ms = millisecondsSince(roi_start) - (result.timings.cloud.total() - cloud_ms_before);
+}
+
+FrameContext FrontEnd::frameContext(const RgbdFrame& frame, const std::vector<Segment>& segments) const
+{
+  FrameContext context = roi_filter_.defaultContext();
+  const UpDirection support = estimateSupportPlaneUp(frame, params_.up);
+  if (context.up.known())
+  {
+    // Up from tf; the dominant plane is the support when it is level.
+    constexpr double kLevelCos = 0.966;  // 15 deg
+    if (support.known() && support.up.dot(context.up.up) >= kLevelCos)
+    {
+      context.up.has_support_plane = true;
+      context.up.support_normal = support.support_normal;
+      context.up.support_offset_m = support.support_offset_m;
+      context.up.support_fraction = support.support_fraction;
+    }
+    return context;
+  }
+  context.up = support;
+  if (context.up.known() || segments.empty()) return context;
+  // No plane dominates the view (a close-up of a pile): the tops of a pile
+  // face one way, so the faces' area-weighted dominant normal is up.
+  constexpr int kPointsPerSegment = 300;
+  std::vector<Eigen::Vector3d> normals;
+  std::vector<double> weights;
+  for (const Segment& segment : segments)
+  {
+    if (static_cast<int>(segment.pixel_indices.size()) < params_.roi.min_points) continue;
+    std::vector<int> sample;
+    const std::size_t step = std::max<std::size_t>(1, segment.pixel_indices.size() / kPointsPerSegment);
+    for (std::size_t i = 0; i < segment.pixel_indices.size(); i += step) sample.push_back(segment.pixel_indices[i]);
+    const PlaneFit plane = fitPlane(*backProjectPixels(frame, sample), params_.roi.plane);
+    if (!plane.valid || plane.rms_m > params_.roi.max_plane_rms_m) continue;
+    normals.push_back(plane.normal);
+    weights.push_back(segment.area_px);
+  }
+  context.up = dominantFaceNormal(normals, weights, params_.up);
+  return context;
 }
 
 void FrontEnd::dropSmallPieces(FrontEndResult& result) const
@@ -172,7 +215,7 @@ void FrontEnd::dropSmallPieces(FrontEndResult& result) const
   }
 }
 
-void FrontEnd::mergeFacePieces(const RgbdFrame& frame, FrontEndResult& result) const
+void FrontEnd::mergeFacePieces(const RgbdFrame& frame, const FrameContext& context, FrontEndResult& result) const
 {
   const double min_cos = std::cos(params_.merge_max_angle_deg * kPi / 180.0);
   auto samePlane = [&](const BrickCandidate& a, const BrickCandidate& b) {
@@ -210,7 +253,8 @@ void FrontEnd::mergeFacePieces(const RgbdFrame& frame, FrontEndResult& result) c
       for (std::size_t j = i + 1; j < candidates.size() && !merged; ++j)
       {
         if (!samePlane(candidates[i], candidates[j]) || !fitsOnePlate(candidates[i], candidates[j])) continue;
-        RoiResult joined = roi_filter_.filter(frame, joinSegments(candidates[i], candidates[j]), &result.timings.cloud);
+        RoiResult joined =
+            roi_filter_.filter(frame, joinSegments(candidates[i], candidates[j]), context, &result.timings.cloud);
         auto* candidate = std::get_if<BrickCandidate>(&joined);
         if (!candidate) continue;
         candidates[i] = std::move(*candidate);

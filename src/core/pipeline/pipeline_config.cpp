@@ -109,9 +109,22 @@ FrontEndParams frontEndParamsFrom(const ParamLookup& lookup)
   read.number("mls_search_radius_m", params.cloud.mls_search_radius_m);
   read.number("dimension_tolerance_m", params.roi.dimensions.tolerance_m);
   read.number("max_plane_rms_m", params.roi.max_plane_rms_m);
+  // The top-face check and the splitting of touching bricks (issue 10).
+  read.number("max_tilt_deg", params.roi.max_tilt_deg);
+  read.number("edge_min_step_m", params.roi.edges.min_step_m);
+  read.number("edge_min_groove_m", params.roi.edges.min_groove_m);
+  read.number("edge_min_line_contrast", params.roi.edges.min_line_contrast);
+  read.number("edge_seam_noise_factor", params.roi.edges.seam_noise_factor);
+  read.number("edge_max_overrun_m", params.roi.edges.max_overrun_m);
+  read.number("tiling_min_seam_strength", params.roi.tiling.min_seam_strength);
+  read.number("side_height_tolerance_m", params.roi.sides.height_tolerance_m);
+  read.number("side_height_tolerance_fraction", params.roi.sides.height_tolerance_fraction);
+  read.number("up_min_support_fraction", params.up.min_support_fraction);
   params.hsv.validate();
   params.region_growing.validate();
   params.cloud.validate();
+  params.roi.validate();
+  params.up.validate();
   return params;
 }
 
@@ -158,6 +171,16 @@ std::map<std::string, std::string> pipelineParamsInEffect(const ParamLookup& loo
       {"mls_search_radius_m", text(front_end.cloud.mls_search_radius_m)},
       {"dimension_tolerance_m", text(front_end.roi.dimensions.tolerance_m)},
       {"max_plane_rms_m", text(front_end.roi.max_plane_rms_m)},
+      {"max_tilt_deg", text(front_end.roi.max_tilt_deg)},
+      {"edge_min_step_m", text(front_end.roi.edges.min_step_m)},
+      {"edge_min_groove_m", text(front_end.roi.edges.min_groove_m)},
+      {"edge_min_line_contrast", text(front_end.roi.edges.min_line_contrast)},
+      {"edge_seam_noise_factor", text(front_end.roi.edges.seam_noise_factor)},
+      {"edge_max_overrun_m", text(front_end.roi.edges.max_overrun_m)},
+      {"tiling_min_seam_strength", text(front_end.roi.tiling.min_seam_strength)},
+      {"side_height_tolerance_m", text(front_end.roi.sides.height_tolerance_m)},
+      {"side_height_tolerance_fraction", text(front_end.roi.sides.height_tolerance_fraction)},
+      {"up_min_support_fraction", text(front_end.up.min_support_fraction)},
       {"overlap", text(estimator.super4pcs.overlap)},
       {"delta_m", text(estimator.super4pcs.delta_m)},
       {"sample_size", text(estimator.super4pcs.sample_size)},

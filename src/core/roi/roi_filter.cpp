@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include <opencv2/imgproc.hpp>
@@ -16,6 +18,9 @@ namespace brick_pose
 namespace
 {
 constexpr double kPi = 3.14159265358979323846;
+/// A colour-free face that smaller catalogue tops cover this well (all but
+/// this share) may be those bricks touching.
+constexpr double kMaxUntiledForAlternative = 0.1;
 
 std::string describe(const std::string& what, double value, const std::string& rule, double limit)
 {
@@ -58,38 +63,51 @@ double longEdgeSeparation(const std::array<Eigen::Vector3d, 4>& c)
   return 0.5 * (distanceToLine(0.5 * (c[0] + c[1]), c[3], c[2]) + distanceToLine(0.5 * (c[3] + c[2]), c[0], c[1]));
 }
 
-/// For each quad edge, whether the image border or a closer surface lies
-/// just outside most of it (see BrickCandidate::edge_truncated).
-std::array<bool, 4> truncatedEdges(const RgbdFrame& frame, const BrickCandidate& candidate, const RoiFilterParams& params)
+/// What lies beyond each quad edge (see edge_evidence.h).
+EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate, const EdgeEvidenceParams& params)
 {
-  constexpr int kSamples = 16;
-  std::array<bool, 4> truncated{{false, false, false, false}};
+  EdgeKinds kinds;
   for (int k = 0; k < 4; ++k)
   {
     const Eigen::Vector2d& a = candidate.corners_px[k];
     const Eigen::Vector2d& b = candidate.corners_px[(k + 1) % 4];
     Eigen::Vector2d outward(b.y() - a.y(), a.x() - b.x());
-    outward.normalize();
     if (outward.dot(0.5 * (a + b) - candidate.centroid_px) < 0.0) outward = -outward;
-    int cut = 0;
-    for (int i = 0; i < kSamples; ++i)
-    {
-      const double t = 0.1 + 0.8 * i / (kSamples - 1);
-      const Eigen::Vector2d probe = a + t * (b - a) + params.edge_probe_offset_px * outward;
-      const int u = static_cast<int>(std::lround(probe.x())), v = static_cast<int>(std::lround(probe.y()));
-      if (u < 0 || v < 0 || u >= frame.width_px() || v >= frame.height_px())
-      {
-        ++cut;
-        continue;
-      }
-      const float z = frame.depthAt(u, v);
-      Eigen::Vector3d on_plane;
-      if (std::isnan(z) || !candidate.plane.intersectRay(frame.camera.ray(u, v), on_plane)) continue;
-      if (z < on_plane.z() - params.occluder_margin_m) ++cut;
-    }
-    truncated[k] = cut * 10 >= kSamples * 3;
+    kinds[k] = classifyEdge(frame, candidate.plane, a, b, outward, params).kind;
   }
-  return truncated;
+  return kinds;
+}
+
+double tiltDegrees(const Eigen::Vector3d& normal, const Eigen::Vector3d& up)
+{
+  const double cos_tilt = normal.dot(up.normalized());
+  return std::acos(std::max(-1.0, std::min(1.0, cos_tilt))) * 180.0 / kPi;
+}
+
+/// The direction sides hang from a face: the frame's up for a level face
+/// (a narrow top's own normal can be degrees off), else the face's normal.
+Eigen::Vector3d sideAxis(const BrickCandidate& candidate, const FrameContext& context)
+{
+  constexpr double kLevelDeg = 10.0;
+  if (context.up.known() && candidate.tilt_from_up_deg <= kLevelDeg) return context.up.up;
+  return candidate.normal;
+}
+
+/// The reason an edge keeps a face from being complete.
+std::string edgeReason(int edge, EdgeKind kind)
+{
+  const std::string name = "edge " + std::to_string(edge);
+  switch (kind)
+  {
+    case EdgeKind::kImageBorder: return "cut by the image border (" + name + ")";
+    case EdgeKind::kOcclusion: return name + " is an occlusion boundary";
+    case EdgeKind::kMaskEdge: return name + " continues on the same plane: no step, crease or seam seen";
+    case EdgeKind::kNoDepth: return name + " has no depth beyond it";
+    case EdgeKind::kOverrun: return name + " is not the face's: the segment runs over it onto another surface";
+    case EdgeKind::kColourLine:
+      return name + " is only a line in the colour image (print on a box?): no step, crease or groove seen";
+    default: return name + " was not examined";
+  }
 }
 
 /// Every k-th index so that about `max_count` remain (all when max_count is 0).
@@ -106,6 +124,22 @@ std::vector<int> thinned(const std::vector<int>& indices, int max_count)
 bool anyTruncated(const BrickCandidate& candidate)
 {
   return std::any_of(candidate.edge_truncated.begin(), candidate.edge_truncated.end(), [](bool cut) { return cut; });
+}
+
+/// "edge 2: occlusion boundary" for the first truncated edge.
+std::string truncation(const BrickCandidate& candidate)
+{
+  for (int k = 0; k < 4; ++k)
+    if (candidate.edge_truncated[k]) return "edge " + std::to_string(k) + ": " + toString(candidate.edge_kinds[k]);
+  return "no edge";
+}
+
+std::vector<const BrickType*> typesFor(const BrickCatalogue& catalogue, const std::string& type_name)
+{
+  std::vector<const BrickType*> types;
+  for (const BrickType& type : catalogue.types())
+    if (type_name.empty() || type.name == type_name) types.push_back(&type);
+  return types;
 }
 
 /// Index (0 or 1) of the corner starting the first long edge of a
@@ -144,12 +178,13 @@ void RoiFilterParams::validate() const
   require(min_fill_ratio >= 0.0 && min_fill_ratio <= 1.0, "min_fill_ratio", "must be in [0, 1]");
   require(std::isfinite(up_direction.norm()), "up_direction", "must be finite");
   require(max_tilt_deg > 0.0 && max_tilt_deg <= 90.0, "max_tilt_deg", "must be in (0, 90]");
-  require(edge_probe_offset_px > 0.0, "edge_probe_offset_px", "must be > 0");
-  require(occluder_margin_m > 0.0, "occluder_margin_m", "must be > 0");
   require(quad.side_band_px > 0.0, "quad.side_band_px", "must be > 0");
   require(quad.side_search_px >= 0.0, "quad.side_search_px", "must be >= 0");
   require(quad.edge_quantile >= 0.0 && quad.edge_quantile <= 1.0, "quad.edge_quantile", "must be in [0, 1]");
   require(quad.min_side_points >= 2, "quad.min_side_points", "must be >= 2");
+  edges.validate();
+  tiling.validate();
+  sides.validate();
 }
 
 RoiFilter::RoiFilter(const BrickCatalogue& catalogue, const RoiFilterParams& params,
@@ -159,40 +194,85 @@ RoiFilter::RoiFilter(const BrickCatalogue& catalogue, const RoiFilterParams& par
   params_.validate();
 }
 
+FrameContext RoiFilter::defaultContext() const
+{
+  FrameContext context;
+  if (params_.up_direction.norm() > 0.0)
+  {
+    context.up.up = params_.up_direction.normalized();
+    context.up.source = UpSource::kGiven;
+  }
+  return context;
+}
+
 RoiResult RoiFilter::filter(const RgbdFrame& frame, const Segment& segment, CloudProcessingTimings* cloud_timings) const
 {
+  return filter(frame, segment, defaultContext(), cloud_timings);
+}
+
+RoiResult RoiFilter::filter(const RgbdFrame& frame, const Segment& segment, const FrameContext& context,
+                            CloudProcessingTimings* cloud_timings) const
+{
   BrickCandidate candidate;
-  if (auto reason = measure(frame, segment, cloud_timings, candidate)) return *reason;
-  if (auto reason = assignType(segment, candidate)) return *reason;
+  if (auto reason = measure(frame, segment, context, cloud_timings, candidate)) return *reason;
+  if (auto reason = assignType(frame, context, segment, candidate)) return *reason;
+  judgeCompleteness(frame, context, !segment.type_name.empty(), candidate);
   return candidate;
 }
 
 RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& segment,
                                       CloudProcessingTimings* cloud_timings) const
 {
+  return filterSplitting(frame, segment, defaultContext(), cloud_timings);
+}
+
+RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& segment, const FrameContext& context,
+                                      CloudProcessingTimings* cloud_timings) const
+{
   RoiOutcome outcome;
   BrickCandidate candidate;
-  std::optional<std::string> reason = measure(frame, segment, cloud_timings, candidate);
+  std::optional<std::string> reason = measure(frame, segment, context, cloud_timings, candidate);
   const bool measured = !reason;
-  if (!reason) reason = assignType(segment, candidate);
+  if (!reason) reason = assignType(frame, context, segment, candidate);
   if (!reason)
   {
+    // Colour-free: a face of one brick's size may be smaller bricks end to
+    // end. Grooves along every cut say it is. A line (or a groove too faint
+    // to cut on) where they would meet leaves it unsure: partial. With
+    // nothing at all seen there it is taken as one brick.
+    FaceTiling alternative;
+    if (segment.type_name.empty() && mayHoldTwoBricks(candidate))
+    {
+      // The smaller types only: the face's own type would tile it whole.
+      const BrickType* own = catalogue_.find(candidate.type_name);
+      std::vector<const BrickType*> smaller;
+      for (const BrickType& type : catalogue_.types())
+        if (own && type.length_m * type.width_m < 0.7 * own->length_m * own->width_m) smaller.push_back(&type);
+      if (!smaller.empty())
+        if (std::optional<RoiOutcome> tiled =
+                tile(frame, segment, candidate, context, true, cloud_timings, &alternative, &smaller))
+          return *tiled;
+    }
+    judgeCompleteness(frame, context, !segment.type_name.empty(), candidate);
+    if (candidate.complete && alternative.tiles.size() >= 2 && alternative.seen_cuts > 0 &&
+        alternative.untiled_fraction <= kMaxUntiledForAlternative)
+    {
+      candidate.complete = false;
+      candidate.partial_reason = "its size is also " + std::to_string(alternative.tiles.size()) + " smaller " +
+                                 "catalogue tops touching (" + alternative.tiles.front().type_name + ", ...)" +
+                                 ", and a line crosses it where they would meet";
+    }
     outcome.candidates.push_back(std::move(candidate));
     return outcome;
   }
-  // A coloured segment can only hold plates of its type; a colour-free one
-  // is tried against each type in turn.
-  std::vector<Segment> parts;
+  // Planar and facing up but no single brick: touching bricks merged.
   if (measured)
-    for (const BrickType& type : catalogue_.types())
-    {
-      if (!segment.type_name.empty() && type.name != segment.type_name) continue;
-      parts = splitSideBySide(frame, segment, candidate, type, params_.dimensions.tolerance_m);
-      if (!parts.empty()) break;
-    }
+    if (std::optional<RoiOutcome> split = splitMerged(frame, segment, candidate, context, cloud_timings)) return *split;
   // Plates at two heights joined through an edge without a clean depth jump
-  // give one bent "plane": split where the depth steps.
-  if (parts.empty() && !measured && candidate.plane.valid && candidate.plane.rms_m > params_.max_plane_rms_m)
+  // give one bent "plane": split where the depth steps, then filter (and
+  // tile) each part.
+  std::vector<Segment> parts;
+  if (!measured && candidate.plane.valid && candidate.plane.rms_m > params_.max_plane_rms_m)
     parts = splitAtDepthSteps(frame, segment, params_.max_depth_step_m, params_.min_part_area_px);
   if (parts.empty())
   {
@@ -201,17 +281,121 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
   }
   for (const Segment& part : parts)
   {
-    RoiResult result = filter(frame, part, cloud_timings);
-    if (auto* part_candidate = std::get_if<BrickCandidate>(&result))
-      outcome.candidates.push_back(std::move(*part_candidate));
-    else
-      outcome.rejections.push_back("part of a split segment: " + std::get<std::string>(result));
+    BrickCandidate part_candidate;
+    std::optional<std::string> part_reason = measure(frame, part, context, cloud_timings, part_candidate);
+    const bool part_measured = !part_reason;
+    if (!part_reason) part_reason = assignType(frame, context, part, part_candidate);
+    if (!part_reason)
+    {
+      judgeCompleteness(frame, context, !part.type_name.empty(), part_candidate);
+      outcome.candidates.push_back(std::move(part_candidate));
+      continue;
+    }
+    if (part_measured)
+      if (std::optional<RoiOutcome> split = splitMerged(frame, part, part_candidate, context, cloud_timings))
+      {
+        std::move(split->candidates.begin(), split->candidates.end(), std::back_inserter(outcome.candidates));
+        std::move(split->rejections.begin(), split->rejections.end(), std::back_inserter(outcome.rejections));
+        continue;
+      }
+    outcome.rejections.push_back("part of a split segment: " + *part_reason);
   }
   return outcome;
 }
 
+std::optional<RoiOutcome> RoiFilter::splitMerged(const RgbdFrame& frame, const Segment& segment,
+                                                 const BrickCandidate& measured, const FrameContext& context,
+                                                 CloudProcessingTimings* cloud_timings) const
+{
+  if (std::optional<RoiOutcome> tiled = tile(frame, segment, measured, context, false, cloud_timings)) return tiled;
+  // Rows of one colour whose bricks are not quite parallel (a wedge of gap
+  // between them) fit no rectangles on the merged quad's axes: cut them
+  // along their length, evenly or through the visible end of a gap.
+  if (segment.type_name.empty()) return std::nullopt;
+  std::vector<Segment> parts;
+  if (const BrickType* type = catalogue_.find(segment.type_name))
+    parts = splitSideBySide(frame, segment, measured, *type, params_.dimensions.tolerance_m);
+  if (parts.empty()) return std::nullopt;
+  RoiOutcome outcome;
+  for (const Segment& part : parts)
+  {
+    BrickCandidate candidate;
+    std::optional<std::string> reason = measure(frame, part, context, cloud_timings, candidate);
+    if (!reason) reason = assignType(frame, context, part, candidate);
+    if (reason)
+    {
+      outcome.rejections.push_back("part of a split segment: " + *reason);
+      continue;
+    }
+    judgeCompleteness(frame, context, true, candidate);
+    outcome.candidates.push_back(std::move(candidate));
+  }
+  return outcome;
+}
+
+bool RoiFilter::mayHoldTwoBricks(const BrickCandidate& candidate) const
+{
+  double smallest_area_m2 = std::numeric_limits<double>::max();
+  for (const BrickType& type : catalogue_.types()) smallest_area_m2 = std::min(smallest_area_m2, type.length_m * type.width_m);
+  return candidate.length_m * candidate.width_m >= 1.8 * smallest_area_m2;
+}
+
+std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                                          const FrameContext& context, bool seams_required,
+                                          CloudProcessingTimings* cloud_timings, FaceTiling* tried,
+                                          const std::vector<const BrickType*>* only_types) const
+{
+  const std::vector<const BrickType*> types = only_types ? *only_types : typesFor(catalogue_, segment.type_name);
+  if (types.empty()) return std::nullopt;
+  const bool typed_by_size = segment.type_name.empty();
+  // Without colour, a large plane is as likely the ground or a table as a
+  // layer of touching bricks: only a region that ends at real edges (a
+  // raised layer) is tiled.
+  if (typed_by_size)
+  {
+    int real_edges = 0;
+    for (const EdgeKind kind : measured.edge_kinds) real_edges += isRealEdge(kind) ? 1 : 0;
+    if (real_edges < 3) return std::nullopt;
+  }
+  FaceTiling tiling =
+      tileFace(frame, segment, measured, types, params_.dimensions.tolerance_m, params_.tiling, params_.edges);
+  if (tried) *tried = tiling;
+  if (tiling.tiles.size() < 2) return std::nullopt;
+  // Without colour every cut must dent the depth (print draws lines on
+  // boxes; only a gap between two of them dents the depth): a cut made from
+  // sizes alone would also make up the type of the bricks it separates.
+  if ((seams_required || typed_by_size) && (tiling.cuts == 0 || tiling.grooved_cuts < tiling.cuts)) return std::nullopt;
+  RoiOutcome outcome;
+  for (FaceTile& tile : tiling.tiles)
+  {
+    // The tiling chose the brick's size: check the part against that type.
+    Segment& part = tile.segment;
+    part.type_name = tile.type_name;
+    BrickCandidate candidate;
+    std::optional<std::string> reason = measure(frame, part, context, cloud_timings, candidate);
+    if (!reason) reason = assignType(frame, context, part, candidate);
+    // Without colour, a brick cut off by the border or an occluder could be
+    // any longer type: its size does not tell.
+    if (!reason && typed_by_size && anyTruncated(candidate))
+      reason = "face is cut by an occluder or the image border (" + truncation(candidate) +
+               "): its size cannot tell its type";
+    if (reason)
+    {
+      outcome.rejections.push_back("part of a split segment: " + *reason);
+      continue;
+    }
+    judgeCompleteness(frame, context, !typed_by_size, candidate);
+    outcome.candidates.push_back(std::move(candidate));
+  }
+  if (tiling.untiled_fraction > 0.2)
+    outcome.rejections.push_back(describe("part of a split segment: a share of", tiling.untiled_fraction,
+                                          "of it fits no catalogue brick; limit", 0.2));
+  return outcome;
+}
+
 std::optional<std::string> RoiFilter::measure(const RgbdFrame& frame, const Segment& segment,
-                                              CloudProcessingTimings* cloud_timings, BrickCandidate& candidate) const
+                                              const FrameContext& context, CloudProcessingTimings* cloud_timings,
+                                              BrickCandidate& candidate) const
 {
   if (static_cast<int>(segment.pixel_indices.size()) < params_.min_points)
     return describe("only", static_cast<double>(segment.pixel_indices.size()), "depth pixels, need",
@@ -239,11 +423,18 @@ std::optional<std::string> RoiFilter::measure(const RgbdFrame& frame, const Segm
   if (candidate.plane.rms_m > params_.max_plane_rms_m)
     return describe("plane rms", candidate.plane.rms_m, "m exceeds", params_.max_plane_rms_m);
   candidate.normal = candidate.plane.normal;
-  if (params_.up_direction.norm() > 0.0)
+  candidate.tilt_from_up_deg = std::numeric_limits<double>::quiet_NaN();
+  if (context.up.known())
   {
-    const double cos_tilt = candidate.normal.dot(params_.up_direction.normalized());
-    const double tilt_deg = std::acos(std::max(-1.0, std::min(1.0, cos_tilt))) * 180.0 / kPi;
-    if (tilt_deg > params_.max_tilt_deg) return describe("face tilt", tilt_deg, "deg exceeds", params_.max_tilt_deg);
+    candidate.tilt_from_up_deg = tiltDegrees(candidate.normal, context.up.up);
+    if (candidate.tilt_from_up_deg > params_.max_tilt_deg)
+    {
+      std::ostringstream text;
+      text.precision(3);
+      text << "not a top face: its normal is " << candidate.tilt_from_up_deg << " deg from up (from "
+           << toString(context.up.source) << "), more than " << params_.max_tilt_deg << " (a side face)";
+      return text.str();
+    }
   }
 
   // The box of min/max extents is only as good as its worst point: measure it
@@ -286,18 +477,22 @@ std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const S
   candidate.t2_m = candidate.centroid_m - 0.25 * candidate.length_m * long_axis;
   candidate.t1_px = camera.project(candidate.t1_m);
   candidate.t2_px = camera.project(candidate.t2_m);
-  candidate.edge_truncated = truncatedEdges(frame, candidate, params_);
+  candidate.edge_kinds = classifyEdges(frame, candidate, params_.edges);
+  for (int k = 0; k < 4; ++k)
+    candidate.edge_truncated[k] =
+        candidate.edge_kinds[k] == EdgeKind::kImageBorder || candidate.edge_kinds[k] == EdgeKind::kOcclusion;
   return std::nullopt;
 }
 
-std::optional<std::string> RoiFilter::assignType(const Segment& segment, BrickCandidate& candidate) const
+std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const FrameContext& context,
+                                                const Segment& segment, BrickCandidate& candidate) const
 {
   const DimensionTolerance& tolerance = params_.dimensions;
   // The box is measured on plane inliers, whose spread grows with depth
   // noise; only thickness beyond that spread says "not a flat face".
   const double noise_spread_m = 6.0 * candidate.plane.rms_m;
   const double thickness_m = candidate.obb.valid ? std::max(0.0, candidate.obb.extents_m.z() - noise_spread_m) : 0.0;
-  auto complete = [&](const BrickType& type, double tolerance_m) {
+  auto fits = [&](const BrickType& type, double tolerance_m) {
     return std::abs(candidate.length_m - type.length_m) <= tolerance_m &&
            std::abs(candidate.width_m - type.width_m) <= tolerance_m;
   };
@@ -309,28 +504,55 @@ std::optional<std::string> RoiFilter::assignType(const Segment& segment, BrickCa
     if (auto reason = checkTopFaceDimensions(candidate.length_m, candidate.width_m, thickness_m, *type, tolerance))
       return segment.type_name + ": " + *reason;
     candidate.type_name = type->name;
-    candidate.complete = complete(*type, tolerance.tolerance_m) && !anyTruncated(candidate);
-    if (!candidate.complete)
-      candidate.partial_reason = anyTruncated(candidate) ? "an edge is cut by an occluder or the image border"
-                                                         : "smaller than the catalogue's top face";
     return std::nullopt;
   }
 
   // Colour-free: only whole faces can be told apart by size (half a blue
   // brick looks like a green one).
-  if (anyTruncated(candidate)) return std::string("face is cut by an occluder or the image border");
+  if (anyTruncated(candidate)) return "face is cut by an occluder or the image border (" + truncation(candidate) + ")";
   if (candidate.fill_ratio < params_.min_fill_ratio)
     return describe("segment fills", candidate.fill_ratio, "of its quad, less than", params_.min_fill_ratio);
   if (thickness_m > tolerance.max_thickness_m)
     return describe("thickness", thickness_m, "m exceeds", tolerance.max_thickness_m);
+  std::vector<const BrickType*> fitting;
+  double tallest_m = 0.0;
+  for (const BrickType& type : catalogue_.types())
+    if (fits(type, params_.classification_tolerance_m))
+    {
+      fitting.push_back(&type);
+      tallest_m = std::max(tallest_m, type.height_m);
+    }
+  // Several tops of nearly one size: the sides seen to their foot below the
+  // face's real edges say how tall the box is.
+  std::vector<SideFaceEvidence> sides;
+  if (fitting.size() > 1)
+    for (int k = 0; k < 4; ++k)
+      if (candidate.edge_kinds[k] == EdgeKind::kStepDown || candidate.edge_kinds[k] == EdgeKind::kCrease)
+      {
+        const SideFaceEvidence side =
+            measureSideFace(frame, candidate.corners_m, sideAxis(candidate, context), k, tallest_m, context.up,
+                            params_.sides);
+        if (std::getenv("BRICK_POSE_DEBUG_SIDES"))
+          std::fprintf(stderr, "face %.3f x %.3f edge %d (%s): visible %d foot %d height %.3f\n", candidate.length_m,
+                       candidate.width_m, k, toString(candidate.edge_kinds[k]).c_str(), side.visible, side.foot_seen,
+                       side.visible_height_m);
+        if (side.foot_seen) sides.push_back(side);
+      }
+  // Sides reaching the supporting plane are the surest; without one, a side
+  // ending on another level surface (a box it stands on) still tells.
+  if (std::any_of(sides.begin(), sides.end(), [](const SideFaceEvidence& side) { return side.foot_on_support; }))
+    sides.erase(std::remove_if(sides.begin(), sides.end(),
+                               [](const SideFaceEvidence& side) { return !side.foot_on_support; }),
+                sides.end());
   const BrickType* best = nullptr;
   double best_error_m = std::numeric_limits<double>::max();
-  for (const BrickType& type : catalogue_.types())
+  for (const BrickType* type : fitting)
   {
-    const double error_m = std::abs(candidate.length_m - type.length_m) + std::abs(candidate.width_m - type.width_m);
-    if (complete(type, params_.classification_tolerance_m) && error_m < best_error_m)
+    double error_m = std::abs(candidate.length_m - type->length_m) + std::abs(candidate.width_m - type->width_m);
+    for (const SideFaceEvidence& side : sides) error_m += std::abs(side.visible_height_m - type->height_m);
+    if (error_m < best_error_m)
     {
-      best = &type;
+      best = type;
       best_error_m = error_m;
     }
   }
@@ -342,7 +564,62 @@ std::optional<std::string> RoiFilter::assignType(const Segment& segment, BrickCa
     return text.str();
   }
   candidate.type_name = best->name;
-  candidate.complete = true;
   return std::nullopt;
+}
+
+void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& context, bool uniform_colour,
+                                  BrickCandidate& candidate) const
+{
+  candidate.complete = false;
+  candidate.partial_reason.clear();
+  const BrickType* type = catalogue_.find(candidate.type_name);
+  if (!type)
+  {
+    candidate.partial_reason = "unknown brick type '" + candidate.type_name + "'";
+    return;
+  }
+  // Edges that hide where the brick ends say the most: the border and
+  // occluders first, then planes that continue, then missing depth.
+  for (const EdgeKind kind : {EdgeKind::kImageBorder, EdgeKind::kOcclusion, EdgeKind::kOverrun, EdgeKind::kMaskEdge,
+                              EdgeKind::kNoDepth, EdgeKind::kUnknown, EdgeKind::kColourLine})
+    for (int k = 0; k < 4; ++k)
+      if (candidate.edge_kinds[k] == kind && !isRealEdge(kind, uniform_colour))
+      {
+        candidate.partial_reason = edgeReason(k, kind);
+        return;
+      }
+  const double tolerance_m = params_.dimensions.tolerance_m;
+  if (std::abs(candidate.length_m - type->length_m) > tolerance_m ||
+      std::abs(candidate.width_m - type->width_m) > tolerance_m)
+  {
+    std::ostringstream text;
+    text.precision(3);
+    text << "visible size " << candidate.length_m << " x " << candidate.width_m << " m is not the catalogue's "
+         << type->length_m << " x " << type->width_m << " m";
+    candidate.partial_reason = text.str();
+    return;
+  }
+  if (!context.up.known())
+  {
+    candidate.partial_reason = "up direction unknown: a top face cannot be told from a side face";
+    return;
+  }
+  // Last (the most expensive): sides seen below real edges must be as tall
+  // as the brick.
+  for (int k = 0; k < 4; ++k)
+  {
+    if (candidate.edge_kinds[k] != EdgeKind::kStepDown && candidate.edge_kinds[k] != EdgeKind::kCrease) continue;
+    const SideFaceEvidence side =
+        measureSideFace(frame, candidate.corners_m, sideAxis(candidate, context), k, type->height_m, context.up,
+                        params_.sides);
+    if (judgeSideFace(side, type->height_m, params_.sides) != SideFaceVerdict::kMismatch) continue;
+    std::ostringstream text;
+    text.precision(3);
+    text << "no side face of the catalogue height seen: the side below edge " << k << " is " << side.visible_height_m
+         << " m tall, the catalogue's " << type->height_m << " m";
+    candidate.partial_reason = text.str();
+    return;
+  }
+  candidate.complete = true;
 }
 }  // namespace brick_pose

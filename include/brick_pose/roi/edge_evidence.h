@@ -1,0 +1,133 @@
+#pragma once
+// What the frame shows beyond one edge of a face. A face is a brick's whole
+// top only when every edge is where the brick ends: the surface beyond it
+// lies lower (a step down, or the brick's own side face bending away), or a
+// neighbour touches it along a seam (a groove in depth or a dark line in
+// colour). An edge along the image border, along a nearer surface (an
+// occluder) or across a plane that simply continues (the end of a colour
+// mask, a cut made from catalogue sizes alone) says nothing about where the
+// brick ends.
+//
+// Each edge is probed in a few stretches; each stretch aggregates a depth
+// and intensity profile across the edge over all its samples (medians), so
+// a seam a millimetre or two deep under several millimetres of per-pixel
+// noise still shows. An edge is only as good as its worst stretch.
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "brick_pose/frame/rgbd_frame.h"
+#include "brick_pose/geometry/plane_fit.h"
+
+namespace brick_pose
+{
+enum class EdgeKind : std::uint8_t
+{
+  kUnknown = 0,  ///< Not examined.
+  kStepDown,     ///< Beyond the edge the surface drops away from the face (ground, a lower brick, a gap).
+  kCrease,       ///< The surface bends away at the edge without a jump (the brick's side face seen obliquely).
+  kSeam,         ///< The plane continues, but a groove in depth runs along the edge (touching faces).
+  kColourLine,   ///< The plane continues with a line (darker or brighter) along the edge but no
+                 ///< groove: a seam between touching plates of one colour, or just print on a box.
+  kOcclusion,    ///< A nearer surface lies beyond the edge: the face may continue under it.
+  kImageBorder,  ///< The edge runs along the image border: the face may continue outside the image.
+  kMaskEdge,     ///< The plane continues beyond the edge with nothing marking it (a mask or split boundary).
+  kNoDepth,      ///< Too little depth beyond the edge to tell.
+  kOverrun,      ///< Inside the edge the pixels are off the face's plane: the mask runs over the
+                 ///< face's edge (onto a side face of the same colour), so the edge is not the face's.
+};
+
+/// True for the kinds that show where a brick ends: a step down, a crease,
+/// a seam, and a colour line only on a face of uniform colour (a plate
+/// found by its colour), not on printed boxes where lines are everywhere.
+bool isRealEdge(EdgeKind kind, bool uniform_colour = false);
+/// Short name: "step down", "crease", "seam", "occlusion boundary", ...
+std::string toString(EdgeKind kind);
+
+/// The four edges of a face (edge k runs from corner k to corner k + 1).
+using EdgeKinds = std::array<EdgeKind, 4>;
+
+struct EdgeEvidenceParams
+{
+  /// Profiles reach this far (pixels) to either side of the edge.
+  int probe_px = 8;
+  /// Profile samples closer than this to the edge are left out of the
+  /// inside/outside bands (the edge pixels are mixtures, and D4xx depth
+  /// fattens a foreground a few pixels beyond its edge).
+  int inner_gap_px = 2;
+  /// The edge is examined in this many stretches, each judged on its own.
+  int stretches = 4;
+  /// Samples along a stretch are about this far apart (pixels).
+  double sample_spacing_px = 1.5;
+  /// Ends of the edge left out (fraction of its length): corners are
+  /// rounded and mixed.
+  double end_margin_fraction = 0.08;
+  /// Beyond the edge, a surface more than max(min_step_m, step_noise_factor
+  /// * plane rms) from the face's plane is a different surface.
+  double min_step_m = 0.008;
+  double step_noise_factor = 4.0;
+  /// A stretch is cut by the border when at least this fraction of its
+  /// samples has the outside band (partly) outside the image.
+  double max_border_fraction = 0.3;
+  /// Fewer samples with depth beyond the edge than this fraction: no depth.
+  double min_depth_fraction = 0.3;
+  /// Seam tests on a coplanar continuation: a groove (the middle of the
+  /// profile farther than both sides) at least this deep, or a dark line at
+  /// least this many grey levels darker than both sides; each also at least
+  /// seam_noise_factor standard errors of the along-edge scatter. (Lines
+  /// count either way: darker or brighter than both sides.)
+  double min_groove_m = 0.0008;
+  double min_line_contrast = 6.0;
+  double seam_noise_factor = 3.0;
+  /// The seam may lie this many pixels off the fitted edge.
+  int seam_search_px = 3;
+  /// Inside the edge, the face's pixels lying between min_step_m and this
+  /// far below its plane are a side face the mask ran onto (kOverrun);
+  /// farther below is a hole in a joined face (the ground seen between two
+  /// pieces of one plate under a cover), judged by what lies beyond.
+  double max_overrun_m = 0.06;
+
+  void validate() const;  ///< Throws ConfigError naming the field.
+};
+
+/// What one stretch or edge showed, with the numbers behind it.
+struct EdgeEvidence
+{
+  EdgeKind kind = EdgeKind::kUnknown;
+  /// Median signed distance (m) of the surface beyond the edge from the
+  /// face's plane: positive = nearer the camera (above the face), negative
+  /// = below it.
+  double outside_offset_m = 0.0;
+  double groove_m = 0.0;       ///< Depth of a groove along the edge (m, > 0 farther).
+  double line_contrast = 0.0;  ///< Grey levels the edge line is darker (or brighter) than both sides.
+};
+
+/// Classifies the edge from `a_px` to `b_px` of a face lying on `plane`;
+/// `outward_px` is the image direction away from the face (need not be
+/// unit). The worst stretch decides: border, then occlusion, then no depth,
+/// then a mask edge; among real kinds a seam, then a crease, then a step.
+EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
+                          const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
+                          const EdgeEvidenceParams& params = EdgeEvidenceParams());
+
+/// Evidence of a seam along a line that crosses a face (both sides on
+/// `plane`): the groove depth and dark-line contrast over the whole line,
+/// and whether they clear the thresholds of `params`. Used to place and
+/// check the cuts between touching faces.
+struct SeamScore
+{
+  double groove_m = 0.0;
+  double line_contrast = 0.0;
+  /// Best of the two, in standard errors of its along-line scatter.
+  double strength = 0.0;
+  int samples = 0;
+  bool groove_seen = false;  ///< The groove clears min_groove_m and seam_noise_factor standard errors.
+  bool line_seen = false;    ///< The line clears min_line_contrast and seam_noise_factor standard errors.
+  bool seen = false;         ///< Either.
+};
+SeamScore scoreSeam(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
+                    const Eigen::Vector2d& b_px, const EdgeEvidenceParams& params = EdgeEvidenceParams());
+}  // namespace brick_pose

@@ -1,0 +1,437 @@
+#include "brick_pose/roi/edge_evidence.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "brick_pose/common/errors.h"
+
+namespace brick_pose
+{
+namespace
+{
+constexpr float kMissing = std::numeric_limits<float>::quiet_NaN();
+/// Where the profile has no depth beyond the edge, the first depth out to
+/// this many probe widths stands in.
+constexpr int kFarReachFactor = 6;
+
+/// Depth (as signed distance from the face's plane) and grey level sampled
+/// on a grid of rows (positions along the edge) x columns (offsets across
+/// it, from -probe to +reach pixels; positive = outward).
+struct Profile
+{
+  int rows = 0;
+  int min_offset = 0;
+  int max_offset = 0;
+  std::vector<float> offset_m;  ///< NaN where there is no depth
+  std::vector<float> grey;      ///< NaN outside the image
+  std::vector<unsigned char> in_image;
+
+  int columns() const { return max_offset - min_offset + 1; }
+  int at(int row, int offset) const { return row * columns() + (offset - min_offset); }
+};
+
+double median(std::vector<double>& values)
+{
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+/// Robust standard deviation: 1.4826 x median absolute deviation.
+double robustSigma(std::vector<double> values)
+{
+  if (values.size() < 3) return 0.0;
+  const double centre = median(values);
+  for (double& value : values) value = std::abs(value - centre);
+  return 1.4826 * median(values);
+}
+
+Profile sampleProfile(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& from_px,
+                      const Eigen::Vector2d& to_px, const Eigen::Vector2d& outward_unit, int min_offset, int max_offset,
+                      double spacing_px)
+{
+  Profile profile;
+  const double length_px = (to_px - from_px).norm();
+  profile.rows = std::max(1, static_cast<int>(std::floor(length_px / spacing_px)) + 1);
+  profile.min_offset = min_offset;
+  profile.max_offset = max_offset;
+  const std::size_t cells = static_cast<std::size_t>(profile.rows) * static_cast<std::size_t>(profile.columns());
+  profile.offset_m.assign(cells, kMissing);
+  profile.grey.assign(cells, kMissing);
+  profile.in_image.assign(cells, 0);
+  const int width = frame.width_px(), height = frame.height_px();
+  for (int row = 0; row < profile.rows; ++row)
+  {
+    const double t = profile.rows == 1 ? 0.5 : static_cast<double>(row) / (profile.rows - 1);
+    const Eigen::Vector2d on_edge = from_px + t * (to_px - from_px);
+    for (int offset = min_offset; offset <= max_offset; ++offset)
+    {
+      const Eigen::Vector2d p = on_edge + offset * outward_unit;
+      const int u = static_cast<int>(std::lround(p.x())), v = static_cast<int>(std::lround(p.y()));
+      if (u < 0 || v < 0 || u >= width || v >= height) continue;
+      const int cell = profile.at(row, offset);
+      profile.in_image[cell] = 1;
+      const cv::Vec3b& rgb = frame.rgb.ptr<cv::Vec3b>(v)[u];
+      profile.grey[cell] = (static_cast<float>(rgb[0]) + rgb[1] + rgb[2]) / 3.0f;
+      const float z = frame.depthAt(u, v);
+      if (!std::isnan(z)) profile.offset_m[cell] = static_cast<float>(plane.signedDistance(frame.camera.backProject(u, v, z)));
+    }
+  }
+  return profile;
+}
+
+/// Median over rows of each column, of depth offsets or grey levels.
+std::vector<double> columnMedians(const Profile& profile, const std::vector<float>& values)
+{
+  std::vector<double> medians(static_cast<std::size_t>(profile.columns()), std::numeric_limits<double>::quiet_NaN());
+  std::vector<double> column;
+  for (int offset = profile.min_offset; offset <= profile.max_offset; ++offset)
+  {
+    column.clear();
+    for (int row = 0; row < profile.rows; ++row)
+    {
+      const float value = values[profile.at(row, offset)];
+      if (!std::isnan(value)) column.push_back(value);
+    }
+    if (column.size() * 2 >= static_cast<std::size_t>(profile.rows)) medians[offset - profile.min_offset] = median(column);
+  }
+  return medians;
+}
+
+/// Largest dip of a column-median profile at offsets [-search, search]:
+/// the lower of the two sides `arm` away minus the middle (positive when the
+/// middle is lower than both). NaN when the profile has gaps there.
+double largestDip(const std::vector<double>& medians, int min_offset, int search, int arm)
+{
+  double best = std::numeric_limits<double>::quiet_NaN();
+  for (int centre = -search; centre <= search; ++centre)
+  {
+    const int left = centre - arm - min_offset, middle = centre - min_offset, right = centre + arm - min_offset;
+    if (left < 0 || right >= static_cast<int>(medians.size())) continue;
+    // Both sides above the middle: a line or a groove, not a step.
+    const double dip = std::min(medians[left], medians[right]) - medians[middle];
+    if (std::isnan(dip)) continue;
+    if (std::isnan(best) || dip > best) best = dip;
+  }
+  return best;
+}
+
+/// Row-wise scatter of a quantity across rows: robust sigma of the values
+/// of one column inside the face (the noise a median over rows averages).
+double insideScatter(const Profile& profile, const std::vector<float>& values, int inner_gap)
+{
+  std::vector<double> collected;
+  for (int offset = profile.min_offset; offset <= -inner_gap; ++offset)
+  {
+    std::vector<double> column;
+    for (int row = 0; row < profile.rows; ++row)
+    {
+      const float value = values[profile.at(row, offset)];
+      if (!std::isnan(value)) column.push_back(value);
+    }
+    if (column.size() < 3) continue;
+    const double centre = median(column);
+    for (int row = 0; row < profile.rows; ++row)
+    {
+      const float value = values[profile.at(row, offset)];
+      if (!std::isnan(value)) collected.push_back(value - centre);
+    }
+  }
+  return robustSigma(collected);
+}
+
+struct SeamMeasure
+{
+  double groove_m = 0.0;
+  double line_contrast = 0.0;
+  double groove_se = 0.0;  // standard errors of the two over the rows
+  double line_se = 0.0;
+};
+
+constexpr int kSeamArm = 3;
+
+SeamMeasure measureSeam(const Profile& profile, const EdgeEvidenceParams& params)
+{
+  SeamMeasure seam;
+  const std::vector<double> depth = columnMedians(profile, profile.offset_m);
+  const std::vector<double> grey = columnMedians(profile, profile.grey);
+  const double groove = largestDip(depth, profile.min_offset, params.seam_search_px, kSeamArm);
+  // A line darker or brighter than both sides (a shadowed gap, or a gap
+  // showing a paler side face).
+  std::vector<double> inverted(grey.size());
+  for (std::size_t k = 0; k < grey.size(); ++k) inverted[k] = -grey[k];
+  const double dark = largestDip(grey, profile.min_offset, params.seam_search_px, kSeamArm);
+  const double bright = largestDip(inverted, profile.min_offset, params.seam_search_px, kSeamArm);
+  const double line = std::isnan(dark) ? bright : (std::isnan(bright) ? dark : std::max(dark, bright));
+  seam.groove_m = std::isnan(groove) ? 0.0 : groove;
+  seam.line_contrast = std::isnan(line) ? 0.0 : line;
+  // The dip mixes three column medians; the median of n samples has about
+  // 1.25 sigma / sqrt(n) standard error; the dip's is ~1.2x one column's.
+  const double root_rows = std::sqrt(static_cast<double>(std::max(1, profile.rows)));
+  seam.groove_se = 1.5 * insideScatter(profile, profile.offset_m, 1) / root_rows;
+  seam.line_se = 1.5 * insideScatter(profile, profile.grey, 1) / root_rows;
+  return seam;
+}
+
+bool grooveSeen(const SeamMeasure& seam, const EdgeEvidenceParams& params)
+{
+  return seam.groove_m >= params.min_groove_m && seam.groove_m >= params.seam_noise_factor * seam.groove_se;
+}
+
+bool lineSeen(const SeamMeasure& seam, const EdgeEvidenceParams& params)
+{
+  return seam.line_contrast >= params.min_line_contrast && seam.line_contrast >= params.seam_noise_factor * seam.line_se;
+}
+
+/// Where the surface beyond the edge meets the edge line: the line fitted
+/// to the column medians of the outside band, evaluated at offset 0.
+double outsideInterceptM(const Profile& profile, int first_offset, int last_offset)
+{
+  const std::vector<double> medians = columnMedians(profile, profile.offset_m);
+  double n = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+  for (int offset = first_offset; offset <= last_offset; ++offset)
+  {
+    const double y = medians[offset - profile.min_offset];
+    if (std::isnan(y)) continue;
+    n += 1.0;
+    sx += offset;
+    sy += y;
+    sxx += static_cast<double>(offset) * offset;
+    sxy += offset * y;
+  }
+  if (n < 2.0) return std::numeric_limits<double>::infinity();
+  const double slope = (n * sxy - sx * sy) / std::max(1e-12, n * sxx - sx * sx);
+  return (sy - slope * sx) / n;
+}
+
+/// Beyond the profile: the plane offset (m) of the first pixel with depth
+/// along a row, up to `reach_px` out (a stereo shadow beyond a step can be
+/// wider than the profile at close range); NaN when there is none.
+struct FarProbe
+{
+  const RgbdFrame& frame;
+  const PlaneFit& plane;
+  Eigen::Vector2d from_px, to_px, outward;
+  int rows;
+
+  double operator()(int row, int first_offset, int reach_px) const
+  {
+    const double t = rows == 1 ? 0.5 : static_cast<double>(row) / (rows - 1);
+    const Eigen::Vector2d on_edge = from_px + t * (to_px - from_px);
+    for (int offset = first_offset; offset <= reach_px; ++offset)
+    {
+      const Eigen::Vector2d p = on_edge + offset * outward;
+      const int u = static_cast<int>(std::lround(p.x())), v = static_cast<int>(std::lround(p.y()));
+      if (u < 0 || v < 0 || u >= frame.width_px() || v >= frame.height_px()) break;
+      const float z = frame.depthAt(u, v);
+      if (!std::isnan(z)) return plane.signedDistance(frame.camera.backProject(u, v, z));
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+};
+
+/// Judges one stretch of an edge from its profile.
+EdgeEvidence judgeStretch(const Profile& profile, const FarProbe& far, double step_m, const EdgeEvidenceParams& params)
+{
+  EdgeEvidence evidence;
+  const int first_outside = params.inner_gap_px + 1;
+  int border = 0, above = 0, below = 0, coplanar = 0, missing = 0;
+  std::vector<double> outside_values, sample_values;
+  for (int row = 0; row < profile.rows; ++row)
+  {
+    int in_image = 0;
+    sample_values.clear();
+    // The near band decides; the far one only stands in where the near one
+    // has no depth (a stereo shadow beyond a step).
+    for (int offset = first_outside; offset <= profile.max_offset; ++offset)
+    {
+      const int cell = profile.at(row, offset);
+      if (!profile.in_image[cell]) continue;
+      ++in_image;
+      const bool near_band = offset <= params.probe_px;
+      if (!near_band && sample_values.size() >= 2) continue;
+      if (!std::isnan(profile.offset_m[cell])) sample_values.push_back(profile.offset_m[cell]);
+    }
+    // The edge itself on (or next to) the border counts as cut too.
+    if (in_image < 3 || !profile.in_image[profile.at(row, 0)])
+    {
+      ++border;
+      continue;
+    }
+    if (sample_values.size() < 2)
+    {
+      const double beyond = far(row, profile.max_offset + 1, kFarReachFactor * params.probe_px);
+      if (std::isnan(beyond))
+      {
+        ++missing;
+        continue;
+      }
+      sample_values.assign(2, beyond);
+    }
+    const double outside = median(sample_values);
+    outside_values.push_back(outside);
+    if (outside > step_m) ++above;
+    else if (outside < -step_m) ++below;
+    else ++coplanar;
+  }
+  // Inside the edge the face must be on its plane.
+  std::vector<double> inside_values;
+  for (int row = 0; row < profile.rows; ++row)
+    for (int offset = profile.min_offset; offset < -params.inner_gap_px; ++offset)
+    {
+      const float value = profile.offset_m[profile.at(row, offset)];
+      if (!std::isnan(value)) inside_values.push_back(value);
+    }
+  const double inside = inside_values.empty() ? 0.0 : median(inside_values);
+  const double rows = std::max(1, profile.rows);
+  evidence.outside_offset_m = outside_values.empty() ? 0.0 : median(outside_values);
+  const int with_depth = above + below + coplanar;
+  if (border >= params.max_border_fraction * rows) evidence.kind = EdgeKind::kImageBorder;
+  // Inside the edge but below the face's plane: the mask ran over the
+  // face's edge onto a side face. (Above it is a cover lying across the
+  // face; the outside band tells about that.)
+  else if (inside < -step_m && inside > -params.max_overrun_m) evidence.kind = EdgeKind::kOverrun;
+  // A quarter of nearer samples is an occluder over part of the stretch.
+  else if (above * 4 >= with_depth + missing && above > 0) evidence.kind = EdgeKind::kOcclusion;
+  else if (with_depth < params.min_depth_fraction * (rows - border)) evidence.kind = EdgeKind::kNoDepth;
+  else if (below >= coplanar)
+  {
+    // A surface that falls away linearly from the edge itself bends (the
+    // brick's own side seen obliquely); one that starts lower jumps.
+    evidence.kind = std::abs(outsideInterceptM(profile, first_outside, params.probe_px)) <= step_m ? EdgeKind::kCrease
+                                                                                                   : EdgeKind::kStepDown;
+  }
+  else
+  {
+    const SeamMeasure seam = measureSeam(profile, params);
+    evidence.groove_m = seam.groove_m;
+    evidence.line_contrast = seam.line_contrast;
+    evidence.kind = grooveSeen(seam, params) ? EdgeKind::kSeam
+                    : lineSeen(seam, params) ? EdgeKind::kColourLine
+                                             : EdgeKind::kMaskEdge;
+  }
+  return evidence;
+}
+
+/// Rank of a kind when stretches disagree: the edge is as good as its worst stretch.
+int badness(EdgeKind kind)
+{
+  switch (kind)
+  {
+    case EdgeKind::kImageBorder: return 8;
+    case EdgeKind::kOcclusion: return 7;
+    case EdgeKind::kNoDepth: return 6;
+    case EdgeKind::kOverrun: return 6;
+    case EdgeKind::kMaskEdge: return 5;
+    case EdgeKind::kUnknown: return 4;
+    case EdgeKind::kColourLine: return 3;
+    case EdgeKind::kSeam: return 2;
+    case EdgeKind::kCrease: return 1;
+    case EdgeKind::kStepDown:
+    default: return 0;
+  }
+}
+}  // namespace
+
+bool isRealEdge(EdgeKind kind, bool uniform_colour)
+{
+  return kind == EdgeKind::kStepDown || kind == EdgeKind::kCrease || kind == EdgeKind::kSeam ||
+         (uniform_colour && kind == EdgeKind::kColourLine);
+}
+
+std::string toString(EdgeKind kind)
+{
+  switch (kind)
+  {
+    case EdgeKind::kStepDown: return "step down";
+    case EdgeKind::kCrease: return "crease";
+    case EdgeKind::kSeam: return "seam";
+    case EdgeKind::kColourLine: return "colour line";
+    case EdgeKind::kOcclusion: return "occlusion boundary";
+    case EdgeKind::kImageBorder: return "image border";
+    case EdgeKind::kMaskEdge: return "continuing plane (no edge seen)";
+    case EdgeKind::kNoDepth: return "edge without depth beyond it";
+    case EdgeKind::kOverrun: return "mask running over the face's edge";
+    case EdgeKind::kUnknown:
+    default: return "unexamined edge";
+  }
+}
+
+void EdgeEvidenceParams::validate() const
+{
+  auto require = [](bool condition, const char* field, const char* rule) {
+    if (!condition) throw ConfigError(std::string("edge evidence: ") + field + " " + rule);
+  };
+  require(probe_px >= 4, "probe_px", "must be >= 4");
+  require(inner_gap_px >= 0 && inner_gap_px + 2 <= probe_px, "inner_gap_px", "must be in [0, probe_px - 2]");
+  require(stretches >= 1, "stretches", "must be >= 1");
+  require(sample_spacing_px > 0.0, "sample_spacing_px", "must be > 0");
+  require(end_margin_fraction >= 0.0 && end_margin_fraction < 0.5, "end_margin_fraction", "must be in [0, 0.5)");
+  require(min_step_m > 0.0, "min_step_m", "must be > 0");
+  require(step_noise_factor >= 0.0, "step_noise_factor", "must be >= 0");
+  require(max_border_fraction > 0.0 && max_border_fraction <= 1.0, "max_border_fraction", "must be in (0, 1]");
+  require(min_depth_fraction >= 0.0 && min_depth_fraction <= 1.0, "min_depth_fraction", "must be in [0, 1]");
+  require(min_groove_m > 0.0, "min_groove_m", "must be > 0");
+  require(min_line_contrast > 0.0, "min_line_contrast", "must be > 0");
+  require(seam_noise_factor >= 0.0, "seam_noise_factor", "must be >= 0");
+  require(max_overrun_m > min_step_m, "max_overrun_m", "must be > min_step_m");
+  require(seam_search_px >= 0 && seam_search_px + kSeamArm <= probe_px, "seam_search_px",
+          "must be in [0, probe_px - 3]");
+}
+
+EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
+                          const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
+                          const EdgeEvidenceParams& params)
+{
+  EdgeEvidence worst;
+  const double length_px = (b_px - a_px).norm();
+  if (!(length_px > 1.0) || !(outward_px.norm() > 0.0) || !plane.valid) return worst;
+  const Eigen::Vector2d outward = outward_px.normalized();
+  // Stay clear of the corners (and of the neighbouring edges' outsides).
+  const double margin = std::min(0.25, std::max(params.end_margin_fraction, params.probe_px / length_px));
+  const Eigen::Vector2d start = a_px + margin * (b_px - a_px), end = b_px - margin * (b_px - a_px);
+  // Short edges are examined in fewer stretches, each ~20 px at least.
+  const int stretches = std::max(1, std::min(params.stretches, static_cast<int>((1.0 - 2.0 * margin) * length_px / 20.0)));
+  const double step_m = std::max(params.min_step_m, params.step_noise_factor * plane.rms_m);
+  bool first = true;
+  for (int k = 0; k < stretches; ++k)
+  {
+    const Eigen::Vector2d from = start + (static_cast<double>(k) / stretches) * (end - start);
+    const Eigen::Vector2d to = start + (static_cast<double>(k + 1) / stretches) * (end - start);
+    // The outward band reaches twice as far: a stereo shadow beyond a step
+    // leaves the first pixels without depth.
+    const Profile profile =
+        sampleProfile(frame, plane, from, to, outward, -params.probe_px, 2 * params.probe_px, params.sample_spacing_px);
+    const FarProbe far{frame, plane, from, to, outward, profile.rows};
+    EdgeEvidence stretch = judgeStretch(profile, far, step_m, params);
+    if (first || badness(stretch.kind) > badness(worst.kind)) worst = stretch;
+    first = false;
+  }
+  return worst;
+}
+
+SeamScore scoreSeam(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
+                    const Eigen::Vector2d& b_px, const EdgeEvidenceParams& params)
+{
+  SeamScore score;
+  const Eigen::Vector2d along = b_px - a_px;
+  if (!(along.norm() > 1.0) || !plane.valid) return score;
+  const Eigen::Vector2d across = Eigen::Vector2d(-along.y(), along.x()).normalized();
+  const Profile profile = sampleProfile(frame, plane, a_px, b_px, across, -params.probe_px, params.probe_px,
+                                        params.sample_spacing_px);
+  const SeamMeasure seam = measureSeam(profile, params);
+  score.groove_m = seam.groove_m;
+  score.line_contrast = seam.line_contrast;
+  score.samples = profile.rows;
+  const double groove_strength = seam.groove_m / std::max(seam.groove_se, 0.25 * params.min_groove_m);
+  const double line_strength = seam.line_contrast / std::max(seam.line_se, 0.25 * params.min_line_contrast);
+  score.strength = std::max(groove_strength, line_strength);
+  score.groove_seen = grooveSeen(seam, params);
+  score.line_seen = lineSeen(seam, params);
+  score.seen = score.groove_seen || score.line_seen;
+  return score;
+}
+}  // namespace brick_pose

@@ -1,0 +1,232 @@
+// Edge evidence: what lies beyond a face's edge, on synthetic depth/colour
+// profiles with the noise of a real sensor.
+#include <cmath>
+#include <functional>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "brick_pose/common/errors.h"
+#include "brick_pose/frame/frame_builder.h"
+#include "brick_pose/roi/edge_evidence.h"
+
+namespace brick_pose
+{
+namespace
+{
+constexpr int kWidth = 320, kHeight = 240;
+constexpr double kFaceDepthM = 1.2;
+constexpr double kEdgeU = 160.0;  // the face covers u < kEdgeU; the edge runs top to bottom
+
+PinholeCamera camera()
+{
+  PinholeCamera c;
+  c.width_px = kWidth;
+  c.height_px = kHeight;
+  c.fx_px = c.fy_px = 300.0;
+  c.cx_px = 159.5;
+  c.cy_px = 119.5;
+  return c;
+}
+
+/// The face: a fronto-parallel plane at kFaceDepthM.
+PlaneFit facePlane()
+{
+  PlaneFit plane;
+  plane.centroid_m = Eigen::Vector3d(0.0, 0.0, kFaceDepthM);
+  plane.normal = -Eigen::Vector3d::UnitZ();
+  plane.rms_m = 0.0015;
+  plane.valid = true;
+  return plane;
+}
+
+/// A frame whose depth and grey level at each pixel come from the given
+/// functions (depth NaN = no depth), plus white noise of `noise_m` and 3
+/// grey levels.
+RgbdFrame makeFrame(const std::function<double(int, int)>& depth_m, const std::function<double(int, int)>& grey,
+                    double noise_m = 0.0015, unsigned seed = 7)
+{
+  std::mt19937 generator(seed);
+  std::normal_distribution<double> depth_noise(0.0, noise_m), grey_noise(0.0, 3.0);
+  cv::Mat rgb(kHeight, kWidth, CV_8UC3), depth(kHeight, kWidth, CV_32FC1);
+  for (int v = 0; v < kHeight; ++v)
+    for (int u = 0; u < kWidth; ++u)
+    {
+      const double z = depth_m(u, v);
+      depth.at<float>(v, u) = std::isnan(z) ? std::nanf("") : static_cast<float>(z + depth_noise(generator));
+      const auto level = cv::saturate_cast<std::uint8_t>(grey(u, v) + grey_noise(generator));
+      rgb.at<cv::Vec3b>(v, u) = cv::Vec3b(level, level, level);
+    }
+  FrameHeader header;
+  header.stamp_ns = 1;
+  header.frame_id = "test";
+  return makeRgbdFrame(rgb, depth, camera(), header);
+}
+
+double plainGrey(int, int) { return 150.0; }
+
+EdgeKind classify(const RgbdFrame& frame, double edge_u = kEdgeU)
+{
+  // The edge from (edge_u, 30) to (edge_u, 210); outward is +u.
+  return classifyEdge(frame, facePlane(), Eigen::Vector2d(edge_u, 30.0), Eigen::Vector2d(edge_u, 210.0),
+                      Eigen::Vector2d(1.0, 0.0))
+      .kind;
+}
+
+TEST(EdgeEvidence, StepDownToAFartherSurfaceIsARealEdge)
+{
+  const RgbdFrame frame = makeFrame([](int u, int) { return u < kEdgeU ? kFaceDepthM : kFaceDepthM + 0.2; }, plainGrey);
+  EXPECT_EQ(classify(frame), EdgeKind::kStepDown);
+  EXPECT_TRUE(isRealEdge(EdgeKind::kStepDown));
+}
+
+TEST(EdgeEvidence, AStereoShadowBeyondTheStepStillShowsTheStep)
+{
+  // D4xx: the first pixels beyond a step have no depth (the other imager
+  // cannot see them), the background appears further out.
+  const RgbdFrame frame = makeFrame(
+      [](int u, int) {
+        if (u < kEdgeU) return kFaceDepthM;
+        return u < kEdgeU + 9 ? std::nan("") : kFaceDepthM + 0.2;
+      },
+      plainGrey);
+  EXPECT_EQ(classify(frame), EdgeKind::kStepDown);
+}
+
+TEST(EdgeEvidence, SideFaceBendingAwayIsACrease)
+{
+  // Beyond the edge the surface turns away from the camera (the brick's
+  // own side seen obliquely): continuous at the edge, ever farther beyond.
+  const RgbdFrame frame = makeFrame(
+      [](int u, int) { return u < kEdgeU ? kFaceDepthM : kFaceDepthM + 0.01 * (u - kEdgeU); }, plainGrey);
+  EXPECT_EQ(classify(frame), EdgeKind::kCrease);
+}
+
+TEST(EdgeEvidence, NearerSurfaceBeyondTheEdgeIsAnOcclusion)
+{
+  const RgbdFrame frame = makeFrame([](int u, int) { return u < kEdgeU ? kFaceDepthM : kFaceDepthM - 0.15; }, plainGrey);
+  EXPECT_EQ(classify(frame), EdgeKind::kOcclusion);
+  EXPECT_FALSE(isRealEdge(EdgeKind::kOcclusion));
+}
+
+TEST(EdgeEvidence, AnOccluderOverPartOfTheEdgeMakesItAnOcclusion)
+{
+  // A step down along most of the edge, an occluder over its lower third.
+  const RgbdFrame frame = makeFrame(
+      [](int u, int v) {
+        if (u < kEdgeU) return kFaceDepthM;
+        return v > 150 ? kFaceDepthM - 0.15 : kFaceDepthM + 0.2;
+      },
+      plainGrey);
+  EXPECT_EQ(classify(frame), EdgeKind::kOcclusion);
+}
+
+TEST(EdgeEvidence, PlaneContinuingBeyondTheEdgeIsAMaskEdge)
+{
+  // The plane goes on with the same colour: the edge of a colour mask or a
+  // cut from sizes alone, not where a brick ends.
+  const RgbdFrame frame = makeFrame([](int, int) { return kFaceDepthM; }, plainGrey);
+  EXPECT_EQ(classify(frame), EdgeKind::kMaskEdge);
+  EXPECT_FALSE(isRealEdge(EdgeKind::kMaskEdge));
+}
+
+TEST(EdgeEvidence, AColourChangeOnOnePlaneIsNotASeam)
+{
+  // A label's border or the end of a colour mask: a step in colour, no line.
+  const RgbdFrame frame = makeFrame([](int, int) { return kFaceDepthM; },
+                                    [](int u, int) { return u < kEdgeU ? 150.0 : 90.0; });
+  EXPECT_EQ(classify(frame), EdgeKind::kMaskEdge);
+}
+
+TEST(EdgeEvidence, FaintGrooveUnderNoiseIsASeam)
+{
+  // Touching boxes: depth smoothed across the seam leaves a groove 2 mm deep
+  // and a few pixels wide under 1.5 mm of per-pixel noise; colour is plain.
+  const RgbdFrame frame = makeFrame(
+      [](int u, int) {
+        const double d = std::abs(u - kEdgeU);
+        return kFaceDepthM + (d < 3.0 ? 0.002 * (1.0 - d / 3.0) : 0.0);
+      },
+      plainGrey);
+  EXPECT_EQ(classify(frame), EdgeKind::kSeam);
+  EXPECT_TRUE(isRealEdge(EdgeKind::kSeam));
+}
+
+TEST(EdgeEvidence, DarkLineOnOnePlaneIsAColourLineRealOnlyOnAPlainPlate)
+{
+  // No groove: a seam between touching plates of one colour, or print on a
+  // box; only a face found by its uniform colour may take it for a seam.
+  const RgbdFrame frame = makeFrame([](int, int) { return kFaceDepthM; },
+                                    [](int u, int) { return std::abs(u - kEdgeU) < 1.0 ? 110.0 : 150.0; });
+  EXPECT_EQ(classify(frame), EdgeKind::kColourLine);
+  EXPECT_TRUE(isRealEdge(EdgeKind::kColourLine, true));
+  EXPECT_FALSE(isRealEdge(EdgeKind::kColourLine, false));
+}
+
+TEST(EdgeEvidence, GrooveWithADarkLineIsASeam)
+{
+  const RgbdFrame frame = makeFrame(
+      [](int u, int) {
+        const double d = std::abs(u - kEdgeU);
+        return kFaceDepthM + (d < 3.0 ? 0.002 * (1.0 - d / 3.0) : 0.0);
+      },
+      [](int u, int) { return std::abs(u - kEdgeU) < 1.0 ? 110.0 : 150.0; });
+  EXPECT_EQ(classify(frame), EdgeKind::kSeam);
+}
+
+TEST(EdgeEvidence, AGrooveOfNoiseOnlyIsNotASeam)
+{
+  // The same plane with 3 mm of noise and no groove, for several seeds: the
+  // seam test must not fire on noise.
+  for (unsigned seed = 1; seed <= 6; ++seed)
+  {
+    const RgbdFrame frame = makeFrame([](int, int) { return kFaceDepthM; }, plainGrey, 0.003, seed);
+    EXPECT_EQ(classify(frame), EdgeKind::kMaskEdge) << "seed " << seed;
+  }
+}
+
+TEST(EdgeEvidence, EdgeAlongTheImageBorderIsCutByTheBorder)
+{
+  const RgbdFrame frame = makeFrame([](int, int) { return kFaceDepthM; }, plainGrey);
+  EXPECT_EQ(classify(frame, kWidth - 1.0), EdgeKind::kImageBorder);
+  EXPECT_EQ(classify(frame, kWidth - 3.0), EdgeKind::kImageBorder);
+}
+
+TEST(EdgeEvidence, NoDepthBeyondTheEdgeSaysNothing)
+{
+  const RgbdFrame frame = makeFrame([](int u, int) { return u < kEdgeU ? kFaceDepthM : std::nan(""); }, plainGrey);
+  EXPECT_EQ(classify(frame), EdgeKind::kNoDepth);
+}
+
+TEST(EdgeEvidence, SeamScoreFindsTheGrooveAcrossAFaceAndNotElsewhere)
+{
+  const RgbdFrame frame = makeFrame(
+      [](int u, int) {
+        const double d = std::abs(u - kEdgeU);
+        return kFaceDepthM + (d < 3.0 ? 0.002 * (1.0 - d / 3.0) : 0.0);
+      },
+      plainGrey);
+  const SeamScore on_seam =
+      scoreSeam(frame, facePlane(), Eigen::Vector2d(kEdgeU, 30.0), Eigen::Vector2d(kEdgeU, 210.0));
+  const SeamScore beside =
+      scoreSeam(frame, facePlane(), Eigen::Vector2d(kEdgeU - 40.0, 30.0), Eigen::Vector2d(kEdgeU - 40.0, 210.0));
+  EXPECT_TRUE(on_seam.seen);
+  EXPECT_NEAR(on_seam.groove_m, 0.002, 0.001);
+  EXPECT_FALSE(beside.seen);
+  EXPECT_GT(on_seam.strength, beside.strength + 3.0);
+}
+
+TEST(EdgeEvidence, NamesAndParameterChecks)
+{
+  EXPECT_EQ(toString(EdgeKind::kOcclusion), "occlusion boundary");
+  EXPECT_EQ(toString(EdgeKind::kImageBorder), "image border");
+  EdgeEvidenceParams params;
+  EXPECT_NO_THROW(params.validate());
+  params.probe_px = 2;
+  EXPECT_THROW(params.validate(), ConfigError);
+  params = EdgeEvidenceParams();
+  params.min_groove_m = 0.0;
+  EXPECT_THROW(params.validate(), ConfigError);
+}
+}  // namespace
+}  // namespace brick_pose

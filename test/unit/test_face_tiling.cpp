@@ -1,0 +1,199 @@
+// Touching bricks merged into one planar segment, cut apart by tiling the
+// segment with catalogue sizes along the seams the image shows.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "brick_pose/common/errors.h"
+#include "brick_pose/pipeline/front_end.h"
+#include "brick_pose/roi/face_tiling.h"
+#include "brick_pose/segmentation/hsv_segmenter.h"
+#include "touching_plates_scene.h"
+
+namespace brick_pose
+{
+namespace
+{
+PinholeCamera vga()
+{
+  PinholeCamera camera;
+  camera.width_px = 640;
+  camera.height_px = 480;
+  camera.fx_px = camera.fy_px = 600.0;
+  camera.cx_px = 319.5;
+  camera.cy_px = 239.5;
+  return camera;
+}
+
+test::TouchingPlatesScene rowScene(int count, double length_m, double width_m)
+{
+  test::TouchingPlatesScene scene;
+  scene.camera = vga();
+  scene.origin_m = Eigen::Vector3d(0.02, -0.01, 1.5);
+  scene.rotation = test::TouchingPlatesScene::facingCamera(0.35, 0.4);
+  scene.plates = test::TouchingPlatesScene::row(count, length_m, width_m);
+  return scene;
+}
+
+/// The candidate nearest (centre) to each plate, and the largest corner error.
+double worstCornerErrorM(const std::vector<BrickCandidate>& candidates, const test::TouchingPlatesScene& scene)
+{
+  double worst = 0.0;
+  for (const auto& plate : scene.plates)
+  {
+    const auto truth = scene.cornersM(plate);
+    const Eigen::Vector3d centre = 0.25 * (truth[0] + truth[1] + truth[2] + truth[3]);
+    const BrickCandidate* nearest = nullptr;
+    for (const BrickCandidate& c : candidates)
+      if (!nearest || (c.centroid_m - centre).norm() < (nearest->centroid_m - centre).norm()) nearest = &c;
+    if (!nearest) return 1e9;
+    for (const auto& corner : truth)
+    {
+      double best = 1e9;
+      for (const auto& c : nearest->corners_m) best = std::min(best, (c - corner).norm());
+      worst = std::max(worst, best);
+    }
+  }
+  return worst;
+}
+
+/// The union of the plates measured as one face: plane and outer corners.
+BrickCandidate measuredUnion(const test::TouchingPlatesScene& scene)
+{
+  BrickCandidate measured;
+  measured.plane.centroid_m = scene.origin_m;
+  measured.plane.normal = scene.rotation.col(2);
+  measured.plane.rms_m = scene.depth_noise_m;
+  measured.plane.valid = true;
+  Eigen::Vector2d low(1e9, 1e9), high(-1e9, -1e9);
+  for (const auto& plate : scene.plates)
+  {
+    low = low.cwiseMin(plate.min_m);
+    high = high.cwiseMax(plate.max_m);
+  }
+  measured.corners_m = {scene.toCamera(low.x(), high.y()), scene.toCamera(high.x(), high.y()),
+                        scene.toCamera(high.x(), low.y()), scene.toCamera(low.x(), low.y())};
+  return measured;
+}
+
+TEST(FaceTiling, ThreeGreensSideBySideWithFaintGroovesAreThreeTiles)
+{
+  test::TouchingPlatesScene scene = rowScene(3, 0.6, 0.2);
+  scene.groove_depth_m = 0.002;
+  const RgbdFrame frame = scene.frame();
+  const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
+  const std::vector<Segment> segments = HsvSegmenter().segment(frame, catalogue);
+  ASSERT_EQ(segments.size(), 1u) << "one colour blob for the whole row";
+  const FaceTiling tiling = tileFace(frame, segments[0], measuredUnion(scene), {&catalogue.at("green")}, 0.03,
+                                     FaceTilingParams(), EdgeEvidenceParams());
+  ASSERT_EQ(tiling.tiles.size(), 3u);
+  EXPECT_EQ(tiling.seen_cuts, tiling.cuts);
+  EXPECT_GE(tiling.cuts, 2);
+  EXPECT_LT(tiling.untiled_fraction, 0.05);
+  for (const FaceTile& tile : tiling.tiles)
+  {
+    EXPECT_EQ(tile.type_name, "green");
+    EXPECT_NEAR((tile.corners_m[1] - tile.corners_m[0]).norm() + (tile.corners_m[2] - tile.corners_m[1]).norm(), 0.8,
+                0.02);
+    EXPECT_GT(tile.segment.area_px, 0);
+  }
+}
+
+TEST(FaceTiling, TouchingRowWithSeamsGivesCompleteBricksInHsvMode)
+{
+  test::TouchingPlatesScene scene = rowScene(3, 0.6, 0.2);
+  scene.groove_depth_m = 0.002;
+  scene.line_darkening = 40.0;
+  const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020()).process(scene.frame());
+  ASSERT_EQ(result.candidates.size(), 3u);
+  for (const BrickCandidate& c : result.candidates)
+  {
+    EXPECT_EQ(c.type_name, "green");
+    EXPECT_NEAR(c.length_m, 0.6, 0.015);
+    EXPECT_NEAR(c.width_m, 0.2, 0.015);
+    EXPECT_TRUE(c.complete) << c.partial_reason;
+    EXPECT_TRUE(c.partial_reason.empty());
+  }
+  EXPECT_LT(worstCornerErrorM(result.candidates, scene), 0.015);
+}
+
+TEST(FaceTiling, CutsWithoutASeenSeamArePartialWithTheReason)
+{
+  // No groove and no line: the sizes still tile the row, but the cuts are
+  // guesses, so no brick may claim to be whole.
+  test::TouchingPlatesScene scene = rowScene(3, 0.6, 0.2);
+  const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020()).process(scene.frame());
+  ASSERT_EQ(result.candidates.size(), 3u);
+  int middle = 0;
+  for (const BrickCandidate& c : result.candidates)
+  {
+    EXPECT_FALSE(c.complete);
+    EXPECT_FALSE(c.partial_reason.empty());
+    EXPECT_NE(c.partial_reason.find("continues on the same plane"), std::string::npos) << c.partial_reason;
+    int mask_edges = 0;
+    for (const EdgeKind kind : c.edge_kinds) mask_edges += kind == EdgeKind::kMaskEdge ? 1 : 0;
+    middle += mask_edges == 2 ? 1 : 0;
+  }
+  EXPECT_EQ(middle, 1) << "the middle brick has two guessed edges";
+}
+
+TEST(FaceTiling, ColourFreeTwoRedsEndToEndWithASeamAreNotOneGreen)
+{
+  // 0.6 x 0.2 is a green's top; a dark seam across its middle says two reds.
+  test::TouchingPlatesScene scene = rowScene(1, 0.6, 0.2);
+  scene.plates = {{{-0.3, -0.1}, {0.0, 0.1}, {140, 120, 90}}, {{0.0, -0.1}, {0.3, 0.1}, {140, 120, 90}}};
+  scene.line_darkening = 50.0;
+  scene.groove_depth_m = 0.002;
+  FrontEndParams params;
+  params.mode = SegmentationMode::kRegionGrowing;
+  const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
+  ASSERT_EQ(result.candidates.size(), 2u);
+  for (const BrickCandidate& c : result.candidates)
+  {
+    EXPECT_EQ(c.type_name, "red");
+    EXPECT_NEAR(c.length_m, 0.3, 0.02);
+  }
+  // Without the seam it is one green.
+  scene.line_darkening = 0.0;
+  scene.groove_depth_m = 0.0;
+  const FrontEndResult plain = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
+  ASSERT_EQ(plain.candidates.size(), 1u);
+  EXPECT_EQ(plain.candidates[0].type_name, "green");
+}
+
+TEST(FaceTiling, MixedLayerOfAGreenAndTwoRedsIsTiledWithBothSizes)
+{
+  test::TouchingPlatesScene scene = rowScene(1, 0.6, 0.2);
+  const cv::Vec3b cardboard(140, 120, 90);
+  scene.plates = {{{-0.3, -0.2}, {0.3, 0.0}, cardboard},
+                  {{-0.3, 0.0}, {0.0, 0.2}, cardboard},
+                  {{0.0, 0.0}, {0.3, 0.2}, cardboard}};
+  scene.line_darkening = 50.0;
+  scene.groove_depth_m = 0.002;
+  FrontEndParams params;
+  params.mode = SegmentationMode::kRegionGrowing;
+  const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
+  ASSERT_EQ(result.candidates.size(), 3u);
+  int reds = 0, greens = 0;
+  for (const BrickCandidate& c : result.candidates)
+  {
+    reds += c.type_name == "red" ? 1 : 0;
+    greens += c.type_name == "green" ? 1 : 0;
+  }
+  EXPECT_EQ(reds, 2);
+  EXPECT_EQ(greens, 1);
+  EXPECT_LT(worstCornerErrorM(result.candidates, scene), 0.02);
+}
+
+TEST(FaceTiling, ParameterChecks)
+{
+  FaceTilingParams params;
+  EXPECT_NO_THROW(params.validate());
+  params.min_coverage = 0.0;
+  EXPECT_THROW(params.validate(), ConfigError);
+  params = FaceTilingParams();
+  params.cell_m = -1.0;
+  EXPECT_THROW(params.validate(), ConfigError);
+}
+}  // namespace
+}  // namespace brick_pose
