@@ -13,6 +13,7 @@
 #include "brick_pose/frame/rgbd_frame.h"
 #include "brick_pose/roi/brick_candidate.h"
 #include "brick_pose/roi/roi_filter.h"
+#include "brick_pose/segmentation/colour_free_segmenter.h"
 #include "brick_pose/segmentation/hsv_segmenter.h"
 #include "brick_pose/segmentation/region_growing_segmenter.h"
 
@@ -21,10 +22,11 @@ namespace brick_pose
 enum class SegmentationMode
 {
   kHsv,            ///< Plate colour per catalogue type (default, fast).
-  kRegionGrowing,  ///< Colour-free planar faces classified by size.
+  kRegionGrowing,  ///< Colour-free planar faces classified by size (the paper's PCL region growing; slow).
+  kColourFree,     ///< Colour-free planar faces classified by size (cell clustering; real time).
 };
 
-/// "hsv" or "region_growing"; throws ConfigError for anything else.
+/// "hsv", "region_growing" or "colour_free"; throws ConfigError for anything else.
 SegmentationMode parseSegmentationMode(const std::string& name);
 std::string toString(SegmentationMode mode);
 
@@ -33,6 +35,7 @@ struct FrontEndParams
   SegmentationMode mode = SegmentationMode::kHsv;
   HsvSegmenterParams hsv;
   RegionGrowingParams region_growing;
+  ColourFreeParams colour_free;
   /// Applied to each segment's points, not to the whole frame. Defaults
   /// keep the front end fast: only the depth crop is on. Large segments are
   /// already thinned in the image (RoiFilterParams::max_points), the robust
@@ -107,6 +110,7 @@ private:
   FrontEndParams params_;
   HsvSegmenter hsv_segmenter_;
   RegionGrowingSegmenter region_growing_segmenter_;
+  ColourFreeSegmenter colour_free_segmenter_;
   RoiFilter roi_filter_;
 };
 }  // namespace brick_pose

@@ -13,9 +13,12 @@ namespace brick_pose
 /// `catalogue_path` (empty or unset: the built-in MBZIRC 2020 bricks).
 BrickCatalogue catalogueFrom(const ParamLookup& lookup);
 
-/// `mode` (hsv | region_growing), `min_area_px`, `crop_min_depth_m`,
+/// `mode` (hsv | region_growing | colour_free), `min_area_px`, `crop_min_depth_m`,
 /// `crop_max_depth_m`, `outlier_removal`, `voxel_leaf_m` (0 disables),
-/// `mls`, `mls_search_radius_m`, `dimension_tolerance_m`, `max_plane_rms_m`.
+/// `mls`, `mls_search_radius_m`, `dimension_tolerance_m`, `max_plane_rms_m`;
+/// for colour_free: `colour_free_cell_px`, `colour_free_estimate_noise`,
+/// `colour_free_noise_at_1m_m` (fixed or fallback noise), `colour_free_max_noise_at_1m_m`,
+/// `colour_free_parallel`.
 /// Throws ConfigError naming the parameter.
 FrontEndParams frontEndParamsFrom(const ParamLookup& lookup);
 

@@ -68,12 +68,19 @@ SegmentationMode parseSegmentationMode(const std::string& name)
 {
   if (name == "hsv") return SegmentationMode::kHsv;
   if (name == "region_growing") return SegmentationMode::kRegionGrowing;
-  throw ConfigError("front end: segmentation mode '" + name + "' is not 'hsv' or 'region_growing'");
+  if (name == "colour_free") return SegmentationMode::kColourFree;
+  throw ConfigError("front end: segmentation mode '" + name + "' is not 'hsv', 'region_growing' or 'colour_free'");
 }
 
 std::string toString(SegmentationMode mode)
 {
-  return mode == SegmentationMode::kHsv ? "hsv" : "region_growing";
+  switch (mode)
+  {
+    case SegmentationMode::kHsv: return "hsv";
+    case SegmentationMode::kRegionGrowing: return "region_growing";
+    case SegmentationMode::kColourFree: return "colour_free";
+  }
+  return "unknown";
 }
 
 CloudProcessorParams FrontEndParams::defaultSegmentCloudParams()
@@ -91,14 +98,20 @@ FrontEnd::FrontEnd(const BrickCatalogue& catalogue, const FrontEndParams& params
     params_(params),
     hsv_segmenter_(params.hsv),
     region_growing_segmenter_(params.region_growing),
+    colour_free_segmenter_(params.colour_free),
     roi_filter_(catalogue, pieceFilterParams(params), params.cloud)
 {
 }
 
 std::vector<Segment> FrontEnd::segment(const RgbdFrame& frame) const
 {
-  return params_.mode == SegmentationMode::kHsv ? hsv_segmenter_.segment(frame, catalogue_)
-                                                : region_growing_segmenter_.segment(frame);
+  switch (params_.mode)
+  {
+    case SegmentationMode::kHsv: return hsv_segmenter_.segment(frame, catalogue_);
+    case SegmentationMode::kRegionGrowing: return region_growing_segmenter_.segment(frame);
+    case SegmentationMode::kColourFree: return colour_free_segmenter_.segment(frame);
+  }
+  return {};
 }
 
 void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>& segments,

@@ -18,6 +18,12 @@ FrontEndParams frontEndParamsFrom(const ParamLookup& lookup)
   if (const auto mode = read.text("mode")) params.mode = parseSegmentationMode(*mode);
   read.integer("min_area_px", params.hsv.min_area_px);
   params.region_growing.min_area_px = params.hsv.min_area_px;
+  params.colour_free.min_area_px = params.hsv.min_area_px;
+  read.integer("colour_free_cell_px", params.colour_free.cell_px);
+  read.flag("colour_free_estimate_noise", params.colour_free.estimate_noise);
+  read.number("colour_free_noise_at_1m_m", params.colour_free.noise_at_1m_m);
+  read.number("colour_free_max_noise_at_1m_m", params.colour_free.max_noise_at_1m_m);
+  read.flag("colour_free_parallel", params.colour_free.parallel);
   read.number("crop_min_depth_m", params.cloud.min_depth_m);
   read.number("crop_max_depth_m", params.cloud.max_depth_m);
   read.flag("outlier_removal", params.cloud.outlier_removal_enabled);
@@ -32,6 +38,7 @@ FrontEndParams frontEndParamsFrom(const ParamLookup& lookup)
   read.number("max_plane_rms_m", params.roi.max_plane_rms_m);
   params.hsv.validate();
   params.region_growing.validate();
+  params.colour_free.validate();
   params.cloud.validate();
   return params;
 }

@@ -1,0 +1,365 @@
+#include "brick_pose/segmentation/cell_clustering.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <queue>
+#include <utility>
+
+#include "brick_pose/common/errors.h"
+
+namespace brick_pose
+{
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+
+void require(bool condition, const char* field, const char* rule)
+{
+  if (!condition) throw ConfigError(std::string("colour-free segmenter: ") + field + " " + rule);
+}
+
+/// Standard deviation (rad) of a fitted normal: the noise over the spread of
+/// the points along the plane's narrower axis, shrinking with their number.
+double normalSigmaRad(const PlaneMoments& moments, const MomentPlane& plane, const DepthNoise& noise)
+{
+  return std::sqrt(noise.variance(moments) /
+                   (noise.samples(moments.count) * std::max(plane.narrow_variance_m2, 1e-12)));
+}
+
+/// Union-find over node ids with path halving.
+int findRoot(std::vector<int>& parent, int node)
+{
+  while (parent[node] != node)
+  {
+    parent[node] = parent[parent[node]];
+    node = parent[node];
+  }
+  return node;
+}
+
+enum class NodeState : std::uint8_t
+{
+  kNone,     // not a planar cell
+  kActive,   // in the graph
+  kMerged,   // absorbed into another node
+  kPlane,    // retired as a plane (a neighbour may still absorb it)
+  kRetired,  // retired, too small for a plane (a neighbour may still absorb it)
+};
+
+struct Node
+{
+  PlaneMoments moments;
+  MomentPlane plane;
+  std::vector<int> neighbours;
+  int cells = 1;
+  int version = 0;
+  NodeState state = NodeState::kNone;
+};
+
+struct HeapEntry
+{
+  double mse_m2;
+  int node;
+  int version;
+  bool operator>(const HeapEntry& other) const { return mse_m2 > other.mse_m2; }
+};
+}  // namespace
+
+void CellClusteringParams::validate() const
+{
+  require(min_cell_fill > 0.0 && min_cell_fill <= 1.0, "min_cell_fill", "must be in (0, 1]");
+  require(cell_sigma_factor > 0.0, "cell_sigma_factor", "must be > 0");
+  require(spread_sigma_factor > 0.0, "spread_sigma_factor", "must be > 0");
+  require(offset_sigma_factor > 0.0, "offset_sigma_factor", "must be > 0");
+  require(offset_floor_m >= 0.0, "offset_floor_m", "must be >= 0");
+  require(merge_sigma_factor > 0.0, "merge_sigma_factor", "must be > 0");
+  require(plane_floor_m >= 0.0, "plane_floor_m", "must be >= 0");
+  require(min_angle_deg >= 0.0 && min_angle_deg < 90.0, "min_angle_deg", "must be in [0, 90)");
+  require(angle_sigma_factor >= 0.0, "angle_sigma_factor", "must be >= 0");
+  require(max_angle_deg > 0.0 && max_angle_deg < 90.0 && max_angle_deg >= min_angle_deg, "max_angle_deg",
+          "must be in (0, 90) and >= min_angle_deg");
+  require(min_plane_cells >= 1, "min_plane_cells", "must be >= 1");
+  require(max_plane_normal_sigma_deg > 0.0, "max_plane_normal_sigma_deg", "must be > 0");
+  require(max_incidence_deg > 0.0 && max_incidence_deg < 90.0, "max_incidence_deg", "must be in (0, 90)");
+  require(step_sigma_factor > 0.0, "step_sigma_factor", "must be > 0");
+  require(min_step_fraction >= 0.0, "min_step_fraction", "must be >= 0");
+}
+
+std::vector<MomentPlane> fitCellPlanes(const CellGrid& grid, double min_cell_fill)
+{
+  const double min_points = std::max(3.0, min_cell_fill * grid.cellPx() * grid.cellPx());
+  std::vector<MomentPlane> planes(static_cast<std::size_t>(grid.size()));
+  for (int i = 0; i < grid.size(); ++i)
+    if (grid.moments(i).count >= min_points) planes[i] = fitMomentPlane(grid.moments(i));
+  return planes;
+}
+
+CellClustering::CellClustering(const CellClusteringParams& params) : params_(params) { params_.validate(); }
+
+bool CellClustering::planarCell(const CellGrid& grid, int cell, const MomentPlane& plane, const DepthNoise& noise) const
+{
+  const PlaneMoments& moments = grid.moments(cell);
+  if (!plane.valid || plane.mse_m2 > params_.cell_sigma_factor * params_.cell_sigma_factor * noise.variance(moments))
+    return false;
+  const double distance_m = plane.centroid_m.norm();
+  const double plane_offset_m = std::abs(plane.normal.dot(plane.centroid_m));  // distance of the plane from the camera
+  if (plane_offset_m < std::cos(params_.max_incidence_deg * kPi / 180.0) * distance_m) return false;
+  // Depth along the image changes by z^2 n_u / (f d) per pixel on a plane
+  // at distance d from the camera.
+  const double z = plane.centroid_m.z();
+  const double step_allowance_m =
+      std::max(params_.step_sigma_factor * std::sqrt(2.0) * noise.sigma(z), params_.min_step_fraction * z);
+  const double step_u_m = z * z * std::abs(plane.normal.x()) / (grid.fx() * plane_offset_m);
+  const double step_v_m = z * z * std::abs(plane.normal.y()) / (grid.fy() * plane_offset_m);
+  return grid.maxStepU(cell) <= step_u_m + step_allowance_m && grid.maxStepV(cell) <= step_v_m + step_allowance_m;
+}
+
+bool CellClustering::compatible(const PlaneMoments& a_moments, const MomentPlane& a, const PlaneMoments& b_moments,
+                                const MomentPlane& b, const DepthNoise& noise, double& merged_mse_m2) const
+{
+  const bool a_larger = a_moments.count >= b_moments.count;
+  const PlaneMoments& large_moments = a_larger ? a_moments : b_moments;
+  const PlaneMoments& small_moments = a_larger ? b_moments : a_moments;
+  const MomentPlane& large = a_larger ? a : b;
+  const MomentPlane& small = a_larger ? b : a;
+
+  const double large_sigma_rad = normalSigmaRad(large_moments, large, noise);
+  const double small_sigma_rad = normalSigmaRad(small_moments, small, noise);
+  const double max_angle_deg =
+      std::min(params_.max_angle_deg,
+               params_.min_angle_deg +
+                   params_.angle_sigma_factor * std::hypot(large_sigma_rad, small_sigma_rad) * 180.0 / kPi);
+  if (std::abs(large.normal.dot(small.normal)) < std::cos(max_angle_deg * kPi / 180.0)) return false;
+
+  const double small_variance = noise.variance(small_moments);
+  const Eigen::Vector3d small_mean = small_moments.mean();
+  const double spread_m2 = large.normal.dot(small_moments.covariance() * large.normal);
+  const double plane_floor2 = params_.plane_floor_m * params_.plane_floor_m;
+  if (spread_m2 > params_.spread_sigma_factor * params_.spread_sigma_factor * small_variance + plane_floor2)
+    return false;
+
+  const double offset_m = large.signedDistance(small_mean);
+  const double lever_m = (small_mean - large.centroid_m).norm();
+  const double offset_sigma_m =
+      std::sqrt(small_variance / noise.samples(small_moments.count) +
+                noise.variance(large_moments) / noise.samples(large_moments.count) +
+                (large_sigma_rad * lever_m) * (large_sigma_rad * lever_m));
+  if (std::abs(offset_m) > params_.offset_sigma_factor * offset_sigma_m + params_.offset_floor_m) return false;
+
+  const double total = large_moments.count + small_moments.count;
+  merged_mse_m2 = (large_moments.count * large.mse_m2 + small_moments.count * (spread_m2 + offset_m * offset_m)) / total;
+  const PlaneMoments merged = large_moments + small_moments;
+  return merged_mse_m2 <=
+         params_.merge_sigma_factor * params_.merge_sigma_factor * noise.variance(merged) + plane_floor2;
+}
+
+CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<MomentPlane>& cell_planes,
+                                   const DepthNoise& noise) const
+{
+  const int cols = grid.cols(), rows = grid.rows(), count = grid.size();
+  std::vector<Node> nodes(static_cast<std::size_t>(count));
+  std::vector<int> parent(static_cast<std::size_t>(count));
+  std::priority_queue<HeapEntry, std::vector<HeapEntry>, std::greater<HeapEntry>> heap;
+  for (int i = 0; i < count; ++i)
+  {
+    parent[i] = i;
+    if (!planarCell(grid, i, cell_planes[i], noise)) continue;
+    nodes[i].moments = grid.moments(i);
+    nodes[i].plane = cell_planes[i];
+    nodes[i].state = NodeState::kActive;
+  }
+  for (int i = 0; i < count; ++i)
+  {
+    if (nodes[i].state != NodeState::kActive) continue;
+    const int col = i % cols, row = i / cols;
+    auto link = [&](int other) {
+      if (nodes[other].state == NodeState::kActive) nodes[i].neighbours.push_back(other);
+    };
+    if (col > 0) link(i - 1);
+    if (col + 1 < cols) link(i + 1);
+    if (row > 0) link(i - cols);
+    if (row + 1 < rows) link(i + cols);
+    heap.push({nodes[i].plane.mse_m2, i, 0});
+  }
+
+  std::vector<int> scratch;
+  std::vector<std::pair<double, int>> candidates;
+  const double max_plane_sigma_rad = params_.max_plane_normal_sigma_deg * kPi / 180.0;
+  while (!heap.empty())
+  {
+    const HeapEntry entry = heap.top();
+    heap.pop();
+    Node& node = nodes[entry.node];
+    if (node.state != NodeState::kActive || node.version != entry.version) continue;
+
+    // Neighbour ids may name nodes merged since: resolve and deduplicate.
+    // Retired neighbours stay: a node that found no partner when it was
+    // taken (its neighbours then were small and noisy) joins a plane that
+    // grows up to it later.
+    scratch.clear();
+    for (const int neighbour : node.neighbours)
+    {
+      const int root = findRoot(parent, neighbour);
+      if (root != entry.node) scratch.push_back(root);
+    }
+    std::sort(scratch.begin(), scratch.end());
+    scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
+    node.neighbours = scratch;
+
+    // Every compatible neighbour is absorbed, best (smallest merged MSE)
+    // first and each re-tested against the grown node: one pop per ring of
+    // growth rather than one per cell keeps a large plane's repeated scans
+    // of its border affordable.
+    candidates.clear();
+    for (const int neighbour : node.neighbours)
+    {
+      double merged_mse_m2 = 0.0;
+      if (compatible(node.moments, node.plane, nodes[neighbour].moments, nodes[neighbour].plane, noise, merged_mse_m2))
+        candidates.emplace_back(merged_mse_m2, neighbour);
+    }
+    std::sort(candidates.begin(), candidates.end());
+    int absorbed = 0;
+    for (const auto& [first_mse_m2, neighbour] : candidates)
+    {
+      Node& other = nodes[neighbour];
+      double merged_mse_m2 = first_mse_m2;
+      if (absorbed > 0 && !compatible(node.moments, node.plane, other.moments, other.plane, noise, merged_mse_m2))
+        continue;
+      const PlaneMoments merged = node.moments + other.moments;
+      const MomentPlane merged_plane = fitMomentPlane(merged);
+      if (!merged_plane.valid) continue;  // cannot happen for two planar nodes; be safe anyway
+      parent[neighbour] = entry.node;
+      other.state = NodeState::kMerged;
+      node.moments = merged;
+      node.plane = merged_plane;
+      node.cells += other.cells;
+      node.neighbours.insert(node.neighbours.end(), other.neighbours.begin(), other.neighbours.end());
+      std::vector<int>().swap(other.neighbours);
+      ++absorbed;
+    }
+    if (absorbed == 0)
+    {
+      // A plane needs enough cells and a normal that the noise does not
+      // swamp (a strip of cells one cell wide seen from far away can tilt
+      // freely about its long axis).
+      const bool plane = node.cells >= params_.min_plane_cells &&
+                         normalSigmaRad(node.moments, node.plane, noise) <= max_plane_sigma_rad;
+      node.state = plane ? NodeState::kPlane : NodeState::kRetired;
+      continue;
+    }
+    ++node.version;
+    heap.push({node.plane.mse_m2, entry.node, node.version});
+  }
+
+  CellPlanes result;
+  result.cell_labels.assign(static_cast<std::size_t>(count), -1);
+  std::vector<int> plane_of_node(static_cast<std::size_t>(count), -1);
+  for (int i = 0; i < count; ++i)
+  {
+    if (nodes[i].state == NodeState::kNone) continue;
+    const int root = findRoot(parent, i);
+    if (nodes[root].state != NodeState::kPlane) continue;
+    if (plane_of_node[root] < 0)
+    {
+      plane_of_node[root] = static_cast<int>(result.planes.size());
+      result.planes.push_back(nodes[root].plane);
+      result.moments.push_back(nodes[root].moments);
+      result.cell_counts.push_back(nodes[root].cells);
+    }
+    result.cell_labels[i] = plane_of_node[root];
+  }
+  groupContinuousPlanes(grid, noise, result);
+  return result;
+}
+
+void CellClustering::groupContinuousPlanes(const CellGrid& grid, const DepthNoise& noise, CellPlanes& result) const
+{
+  const int plane_count = static_cast<int>(result.planes.size());
+  std::vector<int> parent(static_cast<std::size_t>(plane_count));
+  for (int i = 0; i < plane_count; ++i) parent[i] = i;
+
+  // Seam cells of each pair of planes: cells of one plane at most two cells
+  // from a cell of the other along a row or a column (a line of non-planar
+  // cells may lie between two parts of one surface).
+  struct SeamCell
+  {
+    int first, second, cell;  // plane pair (first < second) and a cell of either
+    bool operator<(const SeamCell& o) const
+    {
+      return first != o.first ? first < o.first : second != o.second ? second < o.second : cell < o.cell;
+    }
+    bool operator==(const SeamCell& o) const { return first == o.first && second == o.second && cell == o.cell; }
+  };
+  std::vector<SeamCell> seam;
+  const int cols = grid.cols(), rows = grid.rows();
+  for (int row = 0; row < rows; ++row)
+    for (int col = 0; col < cols; ++col)
+    {
+      const int a_cell = row * cols + col;
+      const int a = result.cell_labels[a_cell];
+      if (a < 0) continue;
+      for (int step = 1; step <= 2; ++step)
+        for (const int b_cell : {col + step < cols ? a_cell + step : -1, row + step < rows ? a_cell + step * cols : -1})
+        {
+          if (b_cell < 0) continue;
+          const int b = result.cell_labels[b_cell];
+          if (b < 0 || b == a) continue;
+          seam.push_back({std::min(a, b), std::max(a, b), a_cell});
+          seam.push_back({std::min(a, b), std::max(a, b), b_cell});
+        }
+    }
+  std::sort(seam.begin(), seam.end());
+  seam.erase(std::unique(seam.begin(), seam.end()), seam.end());
+
+  for (std::size_t begin = 0; begin < seam.size();)
+  {
+    const int p = seam[begin].first, q = seam[begin].second;
+    PlaneMoments p_side, q_side;
+    std::size_t end = begin;
+    for (; end < seam.size() && seam[end].first == p && seam[end].second == q; ++end)
+      (result.cell_labels[seam[end].cell] == p ? p_side : q_side) += grid.moments(seam[end].cell);
+    begin = end;
+    double merged_mse_m2 = 0.0;
+    if (continuous(result.moments[p], result.planes[p], p_side, result.moments[q], result.planes[q], q_side, noise) ||
+        compatible(result.moments[p], result.planes[p], result.moments[q], result.planes[q], noise, merged_mse_m2))
+      parent[findRoot(parent, q)] = findRoot(parent, p);
+  }
+
+  result.regions.assign(static_cast<std::size_t>(plane_count), -1);
+  result.region_count = 0;
+  std::vector<int> region_of_root(static_cast<std::size_t>(plane_count), -1);
+  for (int i = 0; i < plane_count; ++i)
+  {
+    const int root = findRoot(parent, i);
+    if (region_of_root[root] < 0) region_of_root[root] = result.region_count++;
+    result.regions[i] = region_of_root[root];
+  }
+}
+
+bool CellClustering::continuous(const PlaneMoments& p_moments, const MomentPlane& p, const PlaneMoments& p_seam,
+                                const PlaneMoments& q_moments, const MomentPlane& q, const PlaneMoments& q_seam,
+                                const DepthNoise& noise) const
+{
+  if (p_seam.count < 3.0 || q_seam.count < 3.0) return false;
+  const double cos_angle = std::min(1.0, std::abs(p.normal.dot(q.normal)));
+  const double max_angle_deg =
+      std::min(params_.max_angle_deg,
+               params_.min_angle_deg + params_.angle_sigma_factor *
+                                           std::hypot(normalSigmaRad(p_moments, p, noise), normalSigmaRad(q_moments, q, noise)) *
+                                           180.0 / kPi);
+  if (cos_angle < std::cos(max_angle_deg * kPi / 180.0)) return false;
+  // Along the mean normal, the two sides of the seam must be at one height:
+  // within the uncertainty of their means, plus what the kink between the
+  // two planes allows over the distance between them.
+  const Eigen::Vector3d mean_normal = (p.normal + (p.normal.dot(q.normal) < 0.0 ? -q.normal : q.normal)).normalized();
+  const Eigen::Vector3d between = p_seam.mean() - q_seam.mean();
+  const double step_m = std::abs(mean_normal.dot(between));
+  const double sine = std::sqrt(std::max(0.0, 1.0 - cos_angle * cos_angle));
+  const double tolerance_m =
+      params_.offset_sigma_factor * std::sqrt(noise.variance(p_seam) / noise.samples(p_seam.count) +
+                                              noise.variance(q_seam) / noise.samples(q_seam.count)) +
+      sine * between.norm() + params_.offset_floor_m;
+  return step_m <= tolerance_m;
+}
+}  // namespace brick_pose
