@@ -36,6 +36,11 @@ struct FrontEndParams
   HsvSegmenterParams hsv;
   RegionGrowingParams region_growing;
   ColourFreeParams colour_free;
+  /// colour_free mode: the supporting plane (ground, table; see
+  /// PlanarSegments) is not passed to ROI filtration. It is no brick, and
+  /// measuring and splitting a segment of most of the image costs ten times
+  /// the rest of the front end.
+  bool skip_supporting_plane = true;
   /// Applied to each segment's points, not to the whole frame. Defaults
   /// keep the front end fast: only the depth crop is on. Large segments are
   /// already thinned in the image (RoiFilterParams::max_points), the robust
@@ -100,6 +105,8 @@ public:
   const FrontEndParams& params() const { return params_; }
 
 private:
+  /// The colour-free segments, without the supporting plane when so configured.
+  std::vector<Segment> colourFreeSegments(const RgbdFrame& frame) const;
   /// Joins pieces of one face (see FrontEndParams::merge_face_pieces).
   void mergeFacePieces(const RgbdFrame& frame, FrontEndResult& result) const;
   /// Drops (as rejections) candidates below RoiFilterParams' minimum visible

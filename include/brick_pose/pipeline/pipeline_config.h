@@ -18,7 +18,7 @@ BrickCatalogue catalogueFrom(const ParamLookup& lookup);
 /// `mls`, `mls_search_radius_m`, `dimension_tolerance_m`, `max_plane_rms_m`;
 /// for colour_free: `colour_free_cell_px`, `colour_free_estimate_noise`,
 /// `colour_free_noise_at_1m_m` (fixed or fallback noise), `colour_free_max_noise_at_1m_m`,
-/// `colour_free_parallel`.
+/// `colour_free_parallel`, `colour_free_skip_supporting_plane`.
 /// Throws ConfigError naming the parameter.
 FrontEndParams frontEndParamsFrom(const ParamLookup& lookup);
 

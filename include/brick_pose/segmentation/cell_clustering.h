@@ -79,8 +79,32 @@ struct CellClusteringParams
   void validate() const;  ///< Throws ConfigError naming the field.
 };
 
+/// A node of the clustering: points, their plane and the statistics the
+/// merge tests read, computed once per change of the node.
+struct PlaneNode
+{
+  PlaneMoments moments;
+  MomentPlane plane;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  double noise_variance_m2 = 0.0;  ///< Expected squared residual at the points' depths.
+  double normal_sigma_rad = 0.0;   ///< Uncertainty of the plane's normal.
+
+  PlaneNode() = default;
+  /// Statistics of `moments` whose plane is `plane` (fitted from them).
+  PlaneNode(const PlaneMoments& moments, const MomentPlane& plane, const DepthNoise& noise);
+};
+
 /// The plane of each cell with enough pixels (invalid otherwise).
 std::vector<MomentPlane> fitCellPlanes(const CellGrid& grid, double min_cell_fill);
+
+/// Where two planes meet: the points on either side of their seam.
+struct PlaneSeam
+{
+  int first = 0, second = 0;  ///< Plane indices, first < second.
+  int length = 0;             ///< Neighbouring cell or pixel pairs along it.
+  PlaneMoments first_side, second_side;
+};
 
 /// Result of the clustering: planes and the plane of each cell.
 struct CellPlanes
@@ -109,17 +133,27 @@ public:
   /// max_incidence_deg, flat within the noise and without a depth step.
   bool planarCell(const CellGrid& grid, int cell, const MomentPlane& plane, const DepthNoise& noise) const;
 
+  /// Whether the cell's largest pixel-to-pixel depth step is more than a
+  /// surface along `plane` explains (the cell spans a depth edge).
+  bool depthStep(const CellGrid& grid, int cell, const MomentPlane& plane, const DepthNoise& noise) const;
+
   /// Whether the nodes `a` and `b` may merge (see the file comment). On
   /// success `merged_mse_m2` receives an upper bound of the merged MSE (the
   /// MSE of the union about the larger node's plane).
-  bool compatible(const PlaneMoments& a_moments, const MomentPlane& a, const PlaneMoments& b_moments,
-                  const MomentPlane& b, const DepthNoise& noise, double& merged_mse_m2) const;
+  bool compatible(const PlaneNode& a, const PlaneNode& b, const DepthNoise& noise, double& merged_mse_m2) const;
 
   /// Whether planes p and q continue each other across their seam, given
   /// the moments of the seam cells on either side (see the file comment).
-  bool continuous(const PlaneMoments& p_moments, const MomentPlane& p, const PlaneMoments& p_seam,
-                  const PlaneMoments& q_moments, const MomentPlane& q, const PlaneMoments& q_seam,
+  bool continuous(const PlaneNode& p, const PlaneMoments& p_seam, const PlaneNode& q, const PlaneMoments& q_seam,
                   const DepthNoise& noise) const;
+
+  /// Joins the regions of planes whose pixels touch along at least
+  /// `min_length` pixel pairs (seams from planeBorders()) where they
+  /// continue each other or are compatible: pixel refinement grows planes
+  /// through cells that did not cluster (noise, dropouts), so two pieces of
+  /// one face may meet only at pixel level.
+  void joinTouchingRegions(const std::vector<PlaneSeam>& seams, int min_length, const DepthNoise& noise,
+                           CellPlanes& planes) const;
 
   const CellClusteringParams& params() const { return params_; }
 

@@ -27,9 +27,12 @@ namespace brick_pose
 {
 struct ColourFreeParams
 {
-  /// Side of the square pixel blocks that are clustered. Smaller finds
-  /// smaller faces (a face needs min_plane_cells whole cells) and costs more.
-  int cell_px = 8;
+  /// Side of the square pixel blocks that are clustered; 0 makes it the
+  /// image width / cells_across (8 px at 640, 16 px at 1280), so a face
+  /// spans as many cells at any resolution. Smaller finds smaller faces (a
+  /// face needs min_plane_cells whole cells) and costs more.
+  int cell_px = 0;
+  double cells_across = 80.0;
   /// Depth noise sigma(z) = a z^2: `a` is measured per frame (the
   /// noise_quantile of sqrt(mse) / z^2 over blocks of 4 x 4 cells) within
   /// [min, max], or fixed at noise_at_1m_m when estimate_noise is false.
@@ -46,22 +49,44 @@ struct ColourFreeParams
   CellClusteringParams clustering;
   PlaneRefinementParams refinement;
   int min_area_px = 400;  ///< Smaller regions are dropped.
+  /// Up to this many pixels without a plane between two pixels of one
+  /// region in a row (dropouts, outliers) belong to the region's mask.
+  int max_gap_px = 2;
   /// Split the per-pixel passes over OpenCV's threads.
   bool parallel = true;
+  /// The supporting plane (ground, table) is the largest region covering at
+  /// least this fraction of the image with no other region more than
+  /// support_margin_m below it and some region more than that above it.
+  double support_min_image_fraction = 0.1;
+  double support_margin_m = 0.03;
 
   void validate() const;  ///< Throws ConfigError naming the field.
 };
 
-/// Wall time of the stages of one call, milliseconds.
+/// Time of the stages of one call, milliseconds: wall, and CPU of the
+/// calling thread (work split onto OpenCV's other threads not included).
 struct ColourFreeTimings
 {
   double cells_ms = 0.0;       ///< Cell moments and planes, noise estimate.
-  double clustering_ms = 0.0;  ///< Agglomerative clustering and plane joining.
-  double refinement_ms = 0.0;  ///< Pixel labels.
-  double segments_ms = 0.0;    ///< Masks, components, pixel lists.
+  double clustering_ms = 0.0;  ///< Agglomerative clustering and plane grouping.
+  double refinement_ms = 0.0;  ///< Pixel labels, regions joined at pixel level.
+  double segments_ms = 0.0;    ///< Masks, components, pixel lists, supporting plane.
+  double cells_cpu_ms = 0.0, clustering_cpu_ms = 0.0, refinement_cpu_ms = 0.0, segments_cpu_ms = 0.0;
   double noise_at_1m_m = 0.0;  ///< The noise coefficient used.
   int planes = 0;              ///< Planes found on the cells.
   int regions = 0;             ///< Regions they form, before the area threshold.
+};
+
+/// Segments with their planes and which of them are the supporting plane.
+struct PlanarSegments
+{
+  std::vector<Segment> segments;     ///< Largest first.
+  std::vector<MomentPlane> planes;   ///< Plane of each segment's region (from its cells).
+  /// Per segment: part of the plane everything else stands on (the ground or
+  /// a table: no region lies below it, some lie above it). A planar region
+  /// of touching boxes with nothing on it is not supporting; the lower layer
+  /// of a stack seen without the ground is.
+  std::vector<bool> supporting;
 };
 
 class ColourFreeSegmenter
@@ -77,6 +102,10 @@ public:
   std::vector<Segment> segment(const RgbdFrame& frame, const cv::Mat& excluded = cv::Mat(),
                                ColourFreeTimings* timings = nullptr) const;
 
+  /// The same segments with their planes and the supporting plane marked.
+  PlanarSegments segmentPlanes(const RgbdFrame& frame, const cv::Mat& excluded = cv::Mat(),
+                               ColourFreeTimings* timings = nullptr) const;
+
   /// The planar region of each pixel (CV_32SC1, -1 none) before the
   /// regions are cut into connected segments, for tests and tools.
   cv::Mat labelRegions(const RgbdFrame& frame, const cv::Mat& excluded = cv::Mat(),
@@ -84,9 +113,18 @@ public:
 
   const ColourFreeParams& params() const { return params_; }
 
+  /// The cell size used for an image `width_px` wide.
+  int cellPx(int width_px) const;
+
 private:
   double measuredNoiseAt1m(const CellGrid& grid) const;
-  std::vector<Segment> segmentsFromLabels(const RgbdFrame& frame, const cv::Mat& labels) const;
+  /// Plane index per pixel (-1 none) into `labels`; returns the planes
+  /// and their regions.
+  CellPlanes labelPlanes(const RgbdFrame& frame, const cv::Mat& excluded, cv::Mat& labels,
+                         ColourFreeTimings& timings) const;
+  /// Per region: whether it is the supporting plane (see PlanarSegments).
+  std::vector<bool> supportingRegions(const std::vector<MomentPlane>& planes, const std::vector<int>& area_px,
+                                      int image_area_px) const;
 
   ColourFreeParams params_;
   CellClustering clustering_;

@@ -109,9 +109,20 @@ std::vector<Segment> FrontEnd::segment(const RgbdFrame& frame) const
   {
     case SegmentationMode::kHsv: return hsv_segmenter_.segment(frame, catalogue_);
     case SegmentationMode::kRegionGrowing: return region_growing_segmenter_.segment(frame);
-    case SegmentationMode::kColourFree: return colour_free_segmenter_.segment(frame);
+    case SegmentationMode::kColourFree: return colourFreeSegments(frame);
   }
   return {};
+}
+
+std::vector<Segment> FrontEnd::colourFreeSegments(const RgbdFrame& frame) const
+{
+  PlanarSegments planar = colour_free_segmenter_.segmentPlanes(frame);
+  if (!params_.skip_supporting_plane) return std::move(planar.segments);
+  std::vector<Segment> segments;
+  segments.reserve(planar.segments.size());
+  for (std::size_t k = 0; k < planar.segments.size(); ++k)
+    if (!planar.supporting[k]) segments.push_back(std::move(planar.segments[k]));
+  return segments;
 }
 
 void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>& segments,

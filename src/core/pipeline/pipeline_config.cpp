@@ -24,6 +24,7 @@ FrontEndParams frontEndParamsFrom(const ParamLookup& lookup)
   read.number("colour_free_noise_at_1m_m", params.colour_free.noise_at_1m_m);
   read.number("colour_free_max_noise_at_1m_m", params.colour_free.max_noise_at_1m_m);
   read.flag("colour_free_parallel", params.colour_free.parallel);
+  read.flag("colour_free_skip_supporting_plane", params.skip_supporting_plane);
   read.number("crop_min_depth_m", params.cloud.min_depth_m);
   read.number("crop_max_depth_m", params.cloud.max_depth_m);
   read.flag("outlier_removal", params.cloud.outlier_removal_enabled);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <queue>
 #include <utility>
 
 #include "brick_pose/common/errors.h"
@@ -49,8 +48,7 @@ enum class NodeState : std::uint8_t
 
 struct Node
 {
-  PlaneMoments moments;
-  MomentPlane plane;
+  PlaneNode stats;
   std::vector<int> neighbours;
   int cells = 1;
   int version = 0;
@@ -97,6 +95,16 @@ std::vector<MomentPlane> fitCellPlanes(const CellGrid& grid, double min_cell_fil
 
 CellClustering::CellClustering(const CellClusteringParams& params) : params_(params) { params_.validate(); }
 
+PlaneNode::PlaneNode(const PlaneMoments& point_moments, const MomentPlane& point_plane, const DepthNoise& noise)
+  : moments(point_moments),
+    plane(point_plane),
+    mean(point_moments.mean()),
+    covariance(point_moments.covariance()),
+    noise_variance_m2(noise.variance(point_moments)),
+    normal_sigma_rad(normalSigmaRad(point_moments, point_plane, noise))
+{
+}
+
 bool CellClustering::planarCell(const CellGrid& grid, int cell, const MomentPlane& plane, const DepthNoise& noise) const
 {
   const PlaneMoments& moments = grid.moments(cell);
@@ -105,69 +113,83 @@ bool CellClustering::planarCell(const CellGrid& grid, int cell, const MomentPlan
   const double distance_m = plane.centroid_m.norm();
   const double plane_offset_m = std::abs(plane.normal.dot(plane.centroid_m));  // distance of the plane from the camera
   if (plane_offset_m < std::cos(params_.max_incidence_deg * kPi / 180.0) * distance_m) return false;
+  return !depthStep(grid, cell, plane, noise);
+}
+
+bool CellClustering::depthStep(const CellGrid& grid, int cell, const MomentPlane& plane, const DepthNoise& noise) const
+{
   // Depth along the image changes by z^2 n_u / (f d) per pixel on a plane
   // at distance d from the camera.
-  const double z = plane.centroid_m.z();
+  const double z = grid.moments(cell).mean().z();
+  const double plane_offset_m = std::max(1e-6, std::abs(plane.normal.dot(plane.centroid_m)));
   const double step_allowance_m =
       std::max(params_.step_sigma_factor * std::sqrt(2.0) * noise.sigma(z), params_.min_step_fraction * z);
   const double step_u_m = z * z * std::abs(plane.normal.x()) / (grid.fx() * plane_offset_m);
   const double step_v_m = z * z * std::abs(plane.normal.y()) / (grid.fy() * plane_offset_m);
-  return grid.maxStepU(cell) <= step_u_m + step_allowance_m && grid.maxStepV(cell) <= step_v_m + step_allowance_m;
+  return grid.maxStepU(cell) > step_u_m + step_allowance_m || grid.maxStepV(cell) > step_v_m + step_allowance_m;
 }
 
-bool CellClustering::compatible(const PlaneMoments& a_moments, const MomentPlane& a, const PlaneMoments& b_moments,
-                                const MomentPlane& b, const DepthNoise& noise, double& merged_mse_m2) const
+bool CellClustering::compatible(const PlaneNode& a, const PlaneNode& b, const DepthNoise& noise,
+                                double& merged_mse_m2) const
 {
-  const bool a_larger = a_moments.count >= b_moments.count;
-  const PlaneMoments& large_moments = a_larger ? a_moments : b_moments;
-  const PlaneMoments& small_moments = a_larger ? b_moments : a_moments;
-  const MomentPlane& large = a_larger ? a : b;
-  const MomentPlane& small = a_larger ? b : a;
+  const bool a_larger = a.moments.count >= b.moments.count;
+  const PlaneNode& large = a_larger ? a : b;
+  const PlaneNode& small = a_larger ? b : a;
 
-  const double large_sigma_rad = normalSigmaRad(large_moments, large, noise);
-  const double small_sigma_rad = normalSigmaRad(small_moments, small, noise);
   const double max_angle_deg =
-      std::min(params_.max_angle_deg,
-               params_.min_angle_deg +
-                   params_.angle_sigma_factor * std::hypot(large_sigma_rad, small_sigma_rad) * 180.0 / kPi);
-  if (std::abs(large.normal.dot(small.normal)) < std::cos(max_angle_deg * kPi / 180.0)) return false;
+      std::min(params_.max_angle_deg, params_.min_angle_deg + params_.angle_sigma_factor *
+                                                                  std::hypot(large.normal_sigma_rad, small.normal_sigma_rad) *
+                                                                  180.0 / kPi);
+  if (std::abs(large.plane.normal.dot(small.plane.normal)) < std::cos(max_angle_deg * kPi / 180.0)) return false;
 
-  const double small_variance = noise.variance(small_moments);
-  const Eigen::Vector3d small_mean = small_moments.mean();
-  const double spread_m2 = large.normal.dot(small_moments.covariance() * large.normal);
+  const Eigen::Vector3d& n = large.plane.normal;
+  const double spread_m2 = n.dot(small.covariance * n);
   const double plane_floor2 = params_.plane_floor_m * params_.plane_floor_m;
-  if (spread_m2 > params_.spread_sigma_factor * params_.spread_sigma_factor * small_variance + plane_floor2)
+  if (spread_m2 > params_.spread_sigma_factor * params_.spread_sigma_factor * small.noise_variance_m2 + plane_floor2)
     return false;
 
-  const double offset_m = large.signedDistance(small_mean);
-  const double lever_m = (small_mean - large.centroid_m).norm();
-  const double offset_sigma_m =
-      std::sqrt(small_variance / noise.samples(small_moments.count) +
-                noise.variance(large_moments) / noise.samples(large_moments.count) +
-                (large_sigma_rad * lever_m) * (large_sigma_rad * lever_m));
+  const double offset_m = large.plane.signedDistance(small.mean);
+  const double lever_m = (small.mean - large.plane.centroid_m).norm();
+  const double offset_sigma_m = std::sqrt(small.noise_variance_m2 / noise.samples(small.moments.count) +
+                                          large.noise_variance_m2 / noise.samples(large.moments.count) +
+                                          (large.normal_sigma_rad * lever_m) * (large.normal_sigma_rad * lever_m));
   if (std::abs(offset_m) > params_.offset_sigma_factor * offset_sigma_m + params_.offset_floor_m) return false;
 
-  const double total = large_moments.count + small_moments.count;
-  merged_mse_m2 = (large_moments.count * large.mse_m2 + small_moments.count * (spread_m2 + offset_m * offset_m)) / total;
-  const PlaneMoments merged = large_moments + small_moments;
-  return merged_mse_m2 <=
-         params_.merge_sigma_factor * params_.merge_sigma_factor * noise.variance(merged) + plane_floor2;
+  const double total = large.moments.count + small.moments.count;
+  merged_mse_m2 =
+      (large.moments.count * large.plane.mse_m2 + small.moments.count * (spread_m2 + offset_m * offset_m)) / total;
+  const double merged_variance_m2 =
+      (large.moments.count * large.noise_variance_m2 + small.moments.count * small.noise_variance_m2) / total;
+  return merged_mse_m2 <= params_.merge_sigma_factor * params_.merge_sigma_factor * merged_variance_m2 + plane_floor2;
 }
 
 CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<MomentPlane>& cell_planes,
                                    const DepthNoise& noise) const
 {
   const int cols = grid.cols(), rows = grid.rows(), count = grid.size();
-  std::vector<Node> nodes(static_cast<std::size_t>(count));
-  std::vector<int> parent(static_cast<std::size_t>(count));
-  std::priority_queue<HeapEntry, std::vector<HeapEntry>, std::greater<HeapEntry>> heap;
+  // Working storage kept between frames: the nodes' neighbour lists keep
+  // their capacity, which saves thousands of small allocations per frame.
+  thread_local std::vector<Node> nodes;
+  thread_local std::vector<int> parent;
+  thread_local std::vector<HeapEntry> heap;  // a min-heap on the MSE
+  if (static_cast<int>(nodes.size()) < count) nodes.resize(static_cast<std::size_t>(count));
+  parent.resize(static_cast<std::size_t>(count));
+  heap.clear();
+  auto push = [&](const HeapEntry& entry) {
+    heap.push_back(entry);
+    std::push_heap(heap.begin(), heap.end(), std::greater<HeapEntry>());
+  };
   for (int i = 0; i < count; ++i)
   {
     parent[i] = i;
+    Node& node = nodes[i];
+    node.neighbours.clear();
+    node.cells = 1;
+    node.version = 0;
+    node.state = NodeState::kNone;
     if (!planarCell(grid, i, cell_planes[i], noise)) continue;
-    nodes[i].moments = grid.moments(i);
-    nodes[i].plane = cell_planes[i];
-    nodes[i].state = NodeState::kActive;
+    node.stats = PlaneNode(grid.moments(i), cell_planes[i], noise);
+    node.state = NodeState::kActive;
   }
   for (int i = 0; i < count; ++i)
   {
@@ -180,7 +202,7 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
     if (col + 1 < cols) link(i + 1);
     if (row > 0) link(i - cols);
     if (row + 1 < rows) link(i + cols);
-    heap.push({nodes[i].plane.mse_m2, i, 0});
+    push({nodes[i].stats.plane.mse_m2, i, 0});
   }
 
   std::vector<int> scratch;
@@ -188,8 +210,9 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
   const double max_plane_sigma_rad = params_.max_plane_normal_sigma_deg * kPi / 180.0;
   while (!heap.empty())
   {
-    const HeapEntry entry = heap.top();
-    heap.pop();
+    std::pop_heap(heap.begin(), heap.end(), std::greater<HeapEntry>());
+    const HeapEntry entry = heap.back();
+    heap.pop_back();
     Node& node = nodes[entry.node];
     if (node.state != NodeState::kActive || node.version != entry.version) continue;
 
@@ -215,7 +238,7 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
     for (const int neighbour : node.neighbours)
     {
       double merged_mse_m2 = 0.0;
-      if (compatible(node.moments, node.plane, nodes[neighbour].moments, nodes[neighbour].plane, noise, merged_mse_m2))
+      if (compatible(node.stats, nodes[neighbour].stats, noise, merged_mse_m2))
         candidates.emplace_back(merged_mse_m2, neighbour);
     }
     std::sort(candidates.begin(), candidates.end());
@@ -224,18 +247,16 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
     {
       Node& other = nodes[neighbour];
       double merged_mse_m2 = first_mse_m2;
-      if (absorbed > 0 && !compatible(node.moments, node.plane, other.moments, other.plane, noise, merged_mse_m2))
-        continue;
-      const PlaneMoments merged = node.moments + other.moments;
+      if (absorbed > 0 && !compatible(node.stats, other.stats, noise, merged_mse_m2)) continue;
+      const PlaneMoments merged = node.stats.moments + other.stats.moments;
       const MomentPlane merged_plane = fitMomentPlane(merged);
       if (!merged_plane.valid) continue;  // cannot happen for two planar nodes; be safe anyway
       parent[neighbour] = entry.node;
       other.state = NodeState::kMerged;
-      node.moments = merged;
-      node.plane = merged_plane;
+      node.stats = PlaneNode(merged, merged_plane, noise);
       node.cells += other.cells;
       node.neighbours.insert(node.neighbours.end(), other.neighbours.begin(), other.neighbours.end());
-      std::vector<int>().swap(other.neighbours);
+      other.neighbours.clear();
       ++absorbed;
     }
     if (absorbed == 0)
@@ -243,13 +264,12 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
       // A plane needs enough cells and a normal that the noise does not
       // swamp (a strip of cells one cell wide seen from far away can tilt
       // freely about its long axis).
-      const bool plane = node.cells >= params_.min_plane_cells &&
-                         normalSigmaRad(node.moments, node.plane, noise) <= max_plane_sigma_rad;
+      const bool plane = node.cells >= params_.min_plane_cells && node.stats.normal_sigma_rad <= max_plane_sigma_rad;
       node.state = plane ? NodeState::kPlane : NodeState::kRetired;
       continue;
     }
     ++node.version;
-    heap.push({node.plane.mse_m2, entry.node, node.version});
+    push({node.stats.plane.mse_m2, entry.node, node.version});
   }
 
   CellPlanes result;
@@ -263,8 +283,8 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
     if (plane_of_node[root] < 0)
     {
       plane_of_node[root] = static_cast<int>(result.planes.size());
-      result.planes.push_back(nodes[root].plane);
-      result.moments.push_back(nodes[root].moments);
+      result.planes.push_back(nodes[root].stats.plane);
+      result.moments.push_back(nodes[root].stats.moments);
       result.cell_counts.push_back(nodes[root].cells);
     }
     result.cell_labels[i] = plane_of_node[root];
@@ -300,11 +320,18 @@ void CellClustering::groupContinuousPlanes(const CellGrid& grid, const DepthNois
       const int a = result.cell_labels[a_cell];
       if (a < 0) continue;
       for (int step = 1; step <= 2; ++step)
-        for (const int b_cell : {col + step < cols ? a_cell + step : -1, row + step < rows ? a_cell + step * cols : -1})
+        for (const int direction : {1, cols})
         {
-          if (b_cell < 0) continue;
+          const bool inside = direction == 1 ? col + step < cols : row + step < rows;
+          if (!inside) continue;
+          const int b_cell = a_cell + step * direction;
           const int b = result.cell_labels[b_cell];
           if (b < 0 || b == a) continue;
+          // Across a cell between them only when it holds depths and no
+          // depth step: two coplanar faces with a gap are two regions.
+          const int middle = a_cell + direction;
+          if (step == 2 && (grid.moments(middle).count < 3.0 || depthStep(grid, middle, result.planes[a], noise)))
+            continue;
           seam.push_back({std::min(a, b), std::max(a, b), a_cell});
           seam.push_back({std::min(a, b), std::max(a, b), b_cell});
         }
@@ -320,9 +347,9 @@ void CellClustering::groupContinuousPlanes(const CellGrid& grid, const DepthNois
     for (; end < seam.size() && seam[end].first == p && seam[end].second == q; ++end)
       (result.cell_labels[seam[end].cell] == p ? p_side : q_side) += grid.moments(seam[end].cell);
     begin = end;
+    const PlaneNode p_node(result.moments[p], result.planes[p], noise), q_node(result.moments[q], result.planes[q], noise);
     double merged_mse_m2 = 0.0;
-    if (continuous(result.moments[p], result.planes[p], p_side, result.moments[q], result.planes[q], q_side, noise) ||
-        compatible(result.moments[p], result.planes[p], result.moments[q], result.planes[q], noise, merged_mse_m2))
+    if (continuous(p_node, p_side, q_node, q_side, noise) || compatible(p_node, q_node, noise, merged_mse_m2))
       parent[findRoot(parent, q)] = findRoot(parent, p);
   }
 
@@ -337,22 +364,53 @@ void CellClustering::groupContinuousPlanes(const CellGrid& grid, const DepthNois
   }
 }
 
-bool CellClustering::continuous(const PlaneMoments& p_moments, const MomentPlane& p, const PlaneMoments& p_seam,
-                                const PlaneMoments& q_moments, const MomentPlane& q, const PlaneMoments& q_seam,
-                                const DepthNoise& noise) const
+void CellClustering::joinTouchingRegions(const std::vector<PlaneSeam>& seams, int min_length, const DepthNoise& noise,
+                                         CellPlanes& planes) const
+{
+  std::vector<int> parent(static_cast<std::size_t>(planes.region_count));
+  for (int i = 0; i < planes.region_count; ++i) parent[i] = i;
+  bool joined = false;
+  for (const PlaneSeam& seam : seams)
+  {
+    const int p = seam.first, q = seam.second;
+    if (seam.length < min_length || findRoot(parent, planes.regions[p]) == findRoot(parent, planes.regions[q])) continue;
+    const PlaneNode p_node(planes.moments[p], planes.planes[p], noise), q_node(planes.moments[q], planes.planes[q], noise);
+    double merged_mse_m2 = 0.0;
+    if (continuous(p_node, seam.first_side, q_node, seam.second_side, noise) ||
+        compatible(p_node, q_node, noise, merged_mse_m2))
+    {
+      parent[findRoot(parent, planes.regions[q])] = findRoot(parent, planes.regions[p]);
+      joined = true;
+    }
+  }
+  if (!joined) return;
+  std::vector<int> renumbered(static_cast<std::size_t>(planes.region_count), -1);
+  int count = 0;
+  for (int& region : planes.regions)
+  {
+    const int root = findRoot(parent, region);
+    if (renumbered[root] < 0) renumbered[root] = count++;
+    region = renumbered[root];
+  }
+  planes.region_count = count;
+}
+
+bool CellClustering::continuous(const PlaneNode& p, const PlaneMoments& p_seam, const PlaneNode& q,
+                                const PlaneMoments& q_seam, const DepthNoise& noise) const
 {
   if (p_seam.count < 3.0 || q_seam.count < 3.0) return false;
-  const double cos_angle = std::min(1.0, std::abs(p.normal.dot(q.normal)));
+  const double cos_angle = std::min(1.0, std::abs(p.plane.normal.dot(q.plane.normal)));
   const double max_angle_deg =
-      std::min(params_.max_angle_deg,
-               params_.min_angle_deg + params_.angle_sigma_factor *
-                                           std::hypot(normalSigmaRad(p_moments, p, noise), normalSigmaRad(q_moments, q, noise)) *
-                                           180.0 / kPi);
+      std::min(params_.max_angle_deg, params_.min_angle_deg + params_.angle_sigma_factor *
+                                                                  std::hypot(p.normal_sigma_rad, q.normal_sigma_rad) *
+                                                                  180.0 / kPi);
   if (cos_angle < std::cos(max_angle_deg * kPi / 180.0)) return false;
   // Along the mean normal, the two sides of the seam must be at one height:
   // within the uncertainty of their means, plus what the kink between the
   // two planes allows over the distance between them.
-  const Eigen::Vector3d mean_normal = (p.normal + (p.normal.dot(q.normal) < 0.0 ? -q.normal : q.normal)).normalized();
+  const Eigen::Vector3d& n_p = p.plane.normal;
+  const Eigen::Vector3d& n_q = q.plane.normal;
+  const Eigen::Vector3d mean_normal = (n_p + (n_p.dot(n_q) < 0.0 ? -n_q : n_q)).normalized();
   const Eigen::Vector3d between = p_seam.mean() - q_seam.mean();
   const double step_m = std::abs(mean_normal.dot(between));
   const double sine = std::sqrt(std::max(0.0, 1.0 - cos_angle * cos_angle));

@@ -5,11 +5,12 @@
 #include <cmath>
 
 #include <opencv2/core/utility.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "brick_pose/common/errors.h"
+#include "brick_pose/common/statistics.h"
 #include "brick_pose/segmentation/cell_grid.h"
 #include "brick_pose/segmentation/depth_noise.h"
+#include "brick_pose/segmentation/label_segments.h"
 
 namespace brick_pose
 {
@@ -29,94 +30,38 @@ double millisecondsSince(Clock::time_point start)
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
+/// Wall and calling-thread CPU time of a stage (the CPU time stays
+/// meaningful on a machine shared with other processes).
+class StageClock
+{
+public:
+  StageClock() : wall_(Clock::now()), cpu_s_(threadCpuSeconds()) {}
+  void stop(double& wall_ms, double& cpu_ms) const
+  {
+    wall_ms = millisecondsSince(wall_);
+    cpu_ms = 1e3 * (threadCpuSeconds() - cpu_s_);
+  }
+
+private:
+  Clock::time_point wall_;
+  double cpu_s_;
+};
+
 void require(bool condition, const char* field, const char* rule)
 {
   if (!condition) throw ConfigError(std::string("colour-free segmenter: ") + field + " " + rule);
 }
 
-/// Pixel count and bounding box of one plane's pixels.
-struct Extent
-{
-  int count = 0;
-  int u_min = 0, v_min = 0, u_max = -1, v_max = -1;
-
-  cv::Rect box() const { return {u_min, v_min, u_max - u_min + 1, v_max - v_min + 1}; }
-};
-
-std::vector<Extent> planeExtents(const cv::Mat& labels, int plane_count)
-{
-  std::vector<Extent> extents(static_cast<std::size_t>(plane_count));
-  for (int v = 0; v < labels.rows; ++v)
-  {
-    const int* row = labels.ptr<int>(v);
-    for (int u = 0; u < labels.cols; ++u)
-    {
-      const int label = row[u];
-      if (label < 0) continue;
-      Extent& e = extents[label];
-      if (e.count++ == 0)
-      {
-        e.u_min = e.u_max = u;
-        e.v_min = e.v_max = v;
-        continue;
-      }
-      e.u_min = std::min(e.u_min, u);
-      e.u_max = std::max(e.u_max, u);
-      e.v_max = v;  // rows are visited in order
-    }
-  }
-  return extents;
-}
-
-/// The connected parts (8-connected) of one plane's pixels inside `box`, as
-/// segments of at least `min_area_px`. Holes without depth inside a part
-/// (dropouts) are closed into its mask: the outline comes from the image.
-void appendPlaneSegments(const cv::Mat& labels, int label, const cv::Rect& box, int min_area_px,
-                         std::vector<Segment>& segments)
-{
-  const cv::Mat region = labels(box);
-  cv::Mat mine, open;
-  cv::compare(region, label, mine, cv::CMP_EQ);
-  cv::compare(region, 0, open, cv::CMP_LT);
-  cv::Mat closed;
-  cv::morphologyEx(mine, closed, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_RECT, {3, 3}));
-  // Closing may only add pixels no plane has.
-  cv::bitwise_and(closed, mine | open, closed);
-
-  cv::Mat components, stats, centroids;
-  const int count = cv::connectedComponentsWithStats(closed, components, stats, centroids, 8, CV_32S);
-  for (int k = 1; k < count; ++k)
-  {
-    const int area = stats.at<int>(k, cv::CC_STAT_AREA);
-    if (area < min_area_px) continue;
-    const cv::Rect local(stats.at<int>(k, cv::CC_STAT_LEFT), stats.at<int>(k, cv::CC_STAT_TOP),
-                         stats.at<int>(k, cv::CC_STAT_WIDTH), stats.at<int>(k, cv::CC_STAT_HEIGHT));
-    Segment segment;
-    segment.bounding_box_px = local + box.tl();
-    segment.area_px = area;
-    segment.mask = cv::Mat::zeros(local.size(), CV_8UC1);
-    segment.pixel_indices.reserve(static_cast<std::size_t>(area));
-    for (int y = local.y; y < local.br().y; ++y)
-    {
-      const int* component_row = components.ptr<int>(y);
-      const int* label_row = region.ptr<int>(y);
-      std::uint8_t* mask_row = segment.mask.ptr<std::uint8_t>(y - local.y);
-      const int v = y + box.y;
-      for (int x = local.x; x < local.br().x; ++x)
-      {
-        if (component_row[x] != k) continue;
-        mask_row[x - local.x] = 255;
-        if (label_row[x] == label) segment.pixel_indices.push_back(v * labels.cols + x + box.x);
-      }
-    }
-    segments.push_back(std::move(segment));
-  }
-}
 }  // namespace
 
 void ColourFreeParams::validate() const
 {
-  require(cell_px >= 2, "cell_px", "must be >= 2");
+  require(cell_px == 0 || cell_px >= 2, "cell_px", "must be 0 (automatic) or >= 2");
+  require(cells_across > 0, "cells_across", "must be > 0");
+  require(max_gap_px >= 0, "max_gap_px", "must be >= 0");
+  require(support_min_image_fraction > 0.0 && support_min_image_fraction <= 1.0, "support_min_image_fraction",
+          "must be in (0, 1]");
+  require(support_margin_m >= 0.0, "support_margin_m", "must be >= 0");
   require(noise_at_1m_m > 0.0, "noise_at_1m_m", "must be > 0");
   require(min_noise_at_1m_m > 0.0, "min_noise_at_1m_m", "must be > 0");
   require(max_noise_at_1m_m >= min_noise_at_1m_m, "max_noise_at_1m_m", "must be >= min_noise_at_1m_m");
@@ -134,66 +79,133 @@ ColourFreeSegmenter::ColourFreeSegmenter(const ColourFreeParams& params)
   params_.validate();
 }
 
-cv::Mat ColourFreeSegmenter::labelRegions(const RgbdFrame& frame, const cv::Mat& excluded,
-                                         ColourFreeTimings* timings) const
+int ColourFreeSegmenter::cellPx(int width_px) const
+{
+  if (params_.cell_px > 0) return params_.cell_px;
+  return std::max(4, static_cast<int>(std::lround(width_px / params_.cells_across)));
+}
+
+CellPlanes ColourFreeSegmenter::labelPlanes(const RgbdFrame& frame, const cv::Mat& excluded, cv::Mat& labels,
+                                            ColourFreeTimings& t) const
 {
   if (!excluded.empty() && (excluded.type() != CV_8UC1 || excluded.size() != frame.depth_m.size()))
     throw InputError("colour-free segmenter: the excluded mask must be CV_8UC1 of the frame's size");
   if (frame.depth_m.empty() || frame.depth_m.type() != CV_32FC1)
     throw InputError("colour-free segmenter: the frame has no CV_32FC1 depth");
-  ColourFreeTimings local;
-  ColourFreeTimings& t = timings ? *timings : local;
 
-  auto start = Clock::now();
+  StageClock clock;
   const PixelRays rays(frame.camera);
-  const CellGrid grid(frame, rays, params_.cell_px, excluded, params_.parallel);
+  const CellGrid grid(frame, rays, cellPx(frame.width_px()), excluded, params_.parallel);
   const std::vector<MomentPlane> cell_planes = fitCellPlanes(grid, params_.clustering.min_cell_fill);
   DepthNoise noise;
   noise.floor_m = params_.noise_floor_m;
   noise.sigma_at_1m_m = params_.estimate_noise ? measuredNoiseAt1m(grid) : params_.noise_at_1m_m;
   noise.correlated_points = static_cast<double>(params_.noise_correlation_px) * params_.noise_correlation_px;
   t.noise_at_1m_m = noise.sigma_at_1m_m;
-  t.cells_ms = millisecondsSince(start);
+  clock.stop(t.cells_ms, t.cells_cpu_ms);
 
-  start = Clock::now();
-  const CellPlanes planes = clustering_.cluster(grid, cell_planes, noise);
+  clock = StageClock();
+  CellPlanes planes = clustering_.cluster(grid, cell_planes, noise);
   t.planes = static_cast<int>(planes.planes.size());
-  t.clustering_ms = millisecondsSince(start);
+  clock.stop(t.clustering_ms, t.clustering_cpu_ms);
 
-  start = Clock::now();
-  cv::Mat labels = refinePlaneLabels(frame, rays, grid, planes, noise, excluded, params_.refinement, params_.parallel);
+  clock = StageClock();
+  std::vector<std::uint8_t> inner_cells;
+  refinePlaneLabels(frame, rays, grid, planes, noise, excluded, params_.refinement, params_.parallel, labels,
+                    &inner_cells);
+  // A border of a cell's side at least: a few flying pixels between two
+  // faces with a gap do not join them.
+  if (planes.region_count > 1)
+    clustering_.joinTouchingRegions(planeBorders(frame, rays, grid, labels, inner_cells), grid.cellPx(), noise, planes);
   t.regions = planes.region_count;
-  if (planes.region_count < static_cast<int>(planes.planes.size()))
+  clock.stop(t.refinement_ms, t.refinement_cpu_ms);
+  return planes;
+}
+
+cv::Mat ColourFreeSegmenter::labelRegions(const RgbdFrame& frame, const cv::Mat& excluded,
+                                          ColourFreeTimings* timings) const
+{
+  ColourFreeTimings local;
+  cv::Mat labels;
+  const CellPlanes planes = labelPlanes(frame, excluded, labels, timings ? *timings : local);
+  for (int v = 0; v < labels.rows; ++v)
   {
-    auto toRegions = [&](const cv::Range& rows) {
-      for (int v = rows.start; v < rows.end; ++v)
-      {
-        int* row = labels.ptr<int>(v);
-        for (int u = 0; u < labels.cols; ++u)
-          if (row[u] >= 0) row[u] = planes.regions[row[u]];
-      }
-    };
-    if (params_.parallel)
-      cv::parallel_for_(cv::Range(0, labels.rows), toRegions);
-    else
-      toRegions(cv::Range(0, labels.rows));
+    int* row = labels.ptr<int>(v);
+    for (int u = 0; u < labels.cols; ++u)
+      if (row[u] >= 0) row[u] = planes.regions[row[u]];
   }
-  t.refinement_ms = millisecondsSince(start);
   return labels;
 }
 
 std::vector<Segment> ColourFreeSegmenter::segment(const RgbdFrame& frame, const cv::Mat& excluded,
                                                   ColourFreeTimings* timings) const
 {
+  return segmentPlanes(frame, excluded, timings).segments;
+}
+
+PlanarSegments ColourFreeSegmenter::segmentPlanes(const RgbdFrame& frame, const cv::Mat& excluded,
+                                                  ColourFreeTimings* timings) const
+{
+  PlanarSegments result;
   // No face fits an image smaller than the smallest segment.
-  if (frame.depth_m.rows * frame.depth_m.cols < params_.min_area_px) return {};
+  if (frame.depth_m.rows * frame.depth_m.cols < params_.min_area_px) return result;
   ColourFreeTimings local;
   ColourFreeTimings& t = timings ? *timings : local;
-  const cv::Mat labels = labelRegions(frame, excluded, &t);
-  const auto start = Clock::now();
-  std::vector<Segment> segments = segmentsFromLabels(frame, labels);
-  t.segments_ms = millisecondsSince(start);
-  return segments;
+  // The label image is working memory kept between frames (a fresh one
+  // costs more in page faults than filling it).
+  thread_local cv::Mat labels;
+  const CellPlanes planes = labelPlanes(frame, excluded, labels, t);
+  const StageClock clock;
+  std::vector<int> segment_regions;
+  result.segments = segmentsFromLabels(labels, planes.regions, params_.min_area_px, params_.max_gap_px, &segment_regions);
+
+  // Plane and size of each region.
+  std::vector<PlaneMoments> region_moments(static_cast<std::size_t>(planes.region_count));
+  for (std::size_t i = 0; i < planes.planes.size(); ++i) region_moments[planes.regions[i]] += planes.moments[i];
+  std::vector<MomentPlane> region_planes(region_moments.size());
+  for (std::size_t r = 0; r < region_moments.size(); ++r) region_planes[r] = fitMomentPlane(region_moments[r]);
+  std::vector<int> region_area(region_moments.size(), 0);
+  for (std::size_t k = 0; k < result.segments.size(); ++k) region_area[segment_regions[k]] += result.segments[k].area_px;
+  const std::vector<bool> supporting = supportingRegions(region_planes, region_area, frame.width_px() * frame.height_px());
+
+  for (std::size_t k = 0; k < result.segments.size(); ++k)
+  {
+    result.planes.push_back(region_planes[segment_regions[k]]);
+    result.supporting.push_back(supporting[segment_regions[k]]);
+  }
+  clock.stop(t.segments_ms, t.segments_cpu_ms);
+  return result;
+}
+
+std::vector<bool> ColourFreeSegmenter::supportingRegions(const std::vector<MomentPlane>& planes,
+                                                         const std::vector<int>& area_px, int image_area_px) const
+{
+  std::vector<bool> supporting(planes.size(), false);
+  const double margin_m = params_.support_margin_m;
+  auto above = [&](const MomentPlane& base, const MomentPlane& other) { return base.signedDistance(other.centroid_m); };
+  int best = -1;
+  for (std::size_t r = 0; r < planes.size(); ++r)
+  {
+    if (!planes[r].valid || area_px[r] < params_.support_min_image_fraction * image_area_px) continue;
+    if (best >= 0 && area_px[r] <= area_px[best]) continue;
+    bool nothing_below = true, something_on = false;
+    for (std::size_t q = 0; q < planes.size() && nothing_below; ++q)
+    {
+      if (q == r || !planes[q].valid || area_px[q] == 0) continue;
+      const double height_m = above(planes[r], planes[q]);
+      nothing_below = height_m >= -margin_m;
+      something_on = something_on || height_m > margin_m;
+    }
+    if (nothing_below && something_on) best = static_cast<int>(r);
+  }
+  if (best < 0) return supporting;
+  // Pieces of the same support the clustering left apart.
+  const double min_cos = std::cos(params_.clustering.min_angle_deg * 3.14159265358979323846 / 180.0);
+  for (std::size_t r = 0; r < planes.size(); ++r)
+    supporting[r] = static_cast<int>(r) == best ||
+                    (planes[r].valid && area_px[r] > 0 && std::abs(above(planes[best], planes[r])) <= margin_m &&
+                     planes[r].normal.dot(planes[best].normal) >= min_cos);
+  return supporting;
 }
 
 double ColourFreeSegmenter::measuredNoiseAt1m(const CellGrid& grid) const
@@ -226,22 +238,4 @@ double ColourFreeSegmenter::measuredNoiseAt1m(const CellGrid& grid) const
                            params_.max_noise_at_1m_m, params_.noise_at_1m_m);
 }
 
-std::vector<Segment> ColourFreeSegmenter::segmentsFromLabels(const RgbdFrame& frame, const cv::Mat& labels) const
-{
-  double max_label = -1.0;
-  cv::minMaxLoc(labels, nullptr, &max_label);
-  const int plane_count = static_cast<int>(max_label) + 1;
-  if (plane_count <= 0) return {};
-  const std::vector<Extent> extents = planeExtents(labels, plane_count);
-  std::vector<Segment> segments;
-  for (int label = 0; label < plane_count; ++label)
-  {
-    // Closing fills dropouts, so a plane with half the area in depth
-    // pixels may still reach it.
-    if (2 * extents[label].count < params_.min_area_px) continue;
-    appendPlaneSegments(labels, label, extents[label].box(), params_.min_area_px, segments);
-  }
-  std::sort(segments.begin(), segments.end(), [](const Segment& a, const Segment& b) { return a.area_px > b.area_px; });
-  return segments;
-}
 }  // namespace brick_pose
