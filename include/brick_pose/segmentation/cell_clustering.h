@@ -95,8 +95,9 @@ struct PlaneNode
   PlaneNode(const PlaneMoments& moments, const MomentPlane& plane, const DepthNoise& noise);
 };
 
-/// The plane of each cell with enough pixels (invalid otherwise).
-std::vector<MomentPlane> fitCellPlanes(const CellGrid& grid, double min_cell_fill);
+/// The plane of each cell with enough pixels (invalid otherwise); with
+/// `parallel`, split over OpenCV's threads.
+std::vector<MomentPlane> fitCellPlanes(const CellGrid& grid, double min_cell_fill, bool parallel = false);
 
 /// Where two planes meet: the points on either side of their seam.
 struct PlaneSeam
@@ -158,6 +159,8 @@ public:
   const CellClusteringParams& params() const { return params_; }
 
 private:
+  /// Largest angle between two normals whose combined uncertainty is `normal_sigma_rad`.
+  double maxAngleRad(double normal_sigma_rad) const;
   /// Groups planes that continue each other into regions.
   void groupContinuousPlanes(const CellGrid& grid, const DepthNoise& noise, CellPlanes& result) const;
 

@@ -62,4 +62,11 @@ struct MomentPlane
 };
 
 MomentPlane fitMomentPlane(const PlaneMoments& moments);
+
+/// The same fit started from a normal close to the answer (the plane of a
+/// node before a merge): two steps of inverse iteration on the covariance
+/// instead of the closed-form eigen decomposition, which costs several
+/// times more. Falls back to fitMomentPlane() when the guess does not
+/// converge (no clearly smallest eigenvalue).
+MomentPlane refitMomentPlane(const PlaneMoments& moments, const Eigen::Vector3d& normal_guess);
 }  // namespace brick_pose

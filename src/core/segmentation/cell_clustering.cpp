@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <utility>
 
+#include <opencv2/core/utility.hpp>
+
 #include "brick_pose/common/errors.h"
 
 namespace brick_pose
@@ -24,6 +26,23 @@ double normalSigmaRad(const PlaneMoments& moments, const MomentPlane& plane, con
 {
   return std::sqrt(noise.variance(moments) /
                    (noise.samples(moments.count) * std::max(plane.narrow_variance_m2, 1e-12)));
+}
+
+/// A node refits its plane when it has grown by this factor since the last
+/// fit; in between, merges keep the normal and move the plane to the new
+/// centroid. Most merges add a cell to a large node and hardly turn its
+/// plane, and the eigen decomposition is the merge's main cost.
+constexpr double kRefitGrowth = 1.1;
+
+/// The plane of `moments` with the normal of `plane` (through their mean),
+/// its MSE measured about that plane: an upper bound of the fitted one.
+MomentPlane withNormal(const MomentPlane& plane, const PlaneMoments& moments)
+{
+  MomentPlane moved = plane;
+  moved.count = moments.count;
+  moved.centroid_m = moments.mean();
+  moved.mse_m2 = std::max(0.0, plane.normal.dot(moments.covariance() * plane.normal));
+  return moved;
 }
 
 /// Union-find over node ids with path halving.
@@ -49,6 +68,7 @@ enum class NodeState : std::uint8_t
 struct Node
 {
   PlaneNode stats;
+  double fitted_count = 0.0;  // points when the plane was last fitted
   std::vector<int> neighbours;
   int cells = 1;
   int version = 0;
@@ -84,12 +104,19 @@ void CellClusteringParams::validate() const
   require(min_step_fraction >= 0.0, "min_step_fraction", "must be >= 0");
 }
 
-std::vector<MomentPlane> fitCellPlanes(const CellGrid& grid, double min_cell_fill)
+std::vector<MomentPlane> fitCellPlanes(const CellGrid& grid, double min_cell_fill, bool parallel)
 {
   const double min_points = std::max(3.0, min_cell_fill * grid.cellPx() * grid.cellPx());
   std::vector<MomentPlane> planes(static_cast<std::size_t>(grid.size()));
-  for (int i = 0; i < grid.size(); ++i)
-    if (grid.moments(i).count >= min_points) planes[i] = fitMomentPlane(grid.moments(i));
+  auto fitRange = [&](const cv::Range& cells) {
+    for (int i = cells.start; i < cells.end; ++i)
+      if (grid.moments(i).count >= min_points) planes[i] = fitMomentPlane(grid.moments(i));
+  };
+  // One eigen decomposition per cell: a third of the cell stage.
+  if (parallel)
+    cv::parallel_for_(cv::Range(0, grid.size()), fitRange, 4.0);
+  else
+    fitRange(cv::Range(0, grid.size()));
   return planes;
 }
 
@@ -135,24 +162,19 @@ bool CellClustering::compatible(const PlaneNode& a, const PlaneNode& b, const De
   const bool a_larger = a.moments.count >= b.moments.count;
   const PlaneNode& large = a_larger ? a : b;
   const PlaneNode& small = a_larger ? b : a;
-
-  const double max_angle_deg =
-      std::min(params_.max_angle_deg, params_.min_angle_deg + params_.angle_sigma_factor *
-                                                                  std::hypot(large.normal_sigma_rad, small.normal_sigma_rad) *
-                                                                  180.0 / kPi);
-  if (std::abs(large.plane.normal.dot(small.plane.normal)) < std::cos(max_angle_deg * kPi / 180.0)) return false;
-
   const Eigen::Vector3d& n = large.plane.normal;
+
+  // Cheapest tests first: most pairs that fail, fail the scatter test.
   const double spread_m2 = n.dot(small.covariance * n);
   const double plane_floor2 = params_.plane_floor_m * params_.plane_floor_m;
   if (spread_m2 > params_.spread_sigma_factor * params_.spread_sigma_factor * small.noise_variance_m2 + plane_floor2)
     return false;
 
   const double offset_m = large.plane.signedDistance(small.mean);
-  const double lever_m = (small.mean - large.plane.centroid_m).norm();
+  const double lever2_m2 = (small.mean - large.plane.centroid_m).squaredNorm();
   const double offset_sigma_m = std::sqrt(small.noise_variance_m2 / noise.samples(small.moments.count) +
                                           large.noise_variance_m2 / noise.samples(large.moments.count) +
-                                          (large.normal_sigma_rad * lever_m) * (large.normal_sigma_rad * lever_m));
+                                          large.normal_sigma_rad * large.normal_sigma_rad * lever2_m2);
   if (std::abs(offset_m) > params_.offset_sigma_factor * offset_sigma_m + params_.offset_floor_m) return false;
 
   const double total = large.moments.count + small.moments.count;
@@ -160,7 +182,18 @@ bool CellClustering::compatible(const PlaneNode& a, const PlaneNode& b, const De
       (large.moments.count * large.plane.mse_m2 + small.moments.count * (spread_m2 + offset_m * offset_m)) / total;
   const double merged_variance_m2 =
       (large.moments.count * large.noise_variance_m2 + small.moments.count * small.noise_variance_m2) / total;
-  return merged_mse_m2 <= params_.merge_sigma_factor * params_.merge_sigma_factor * merged_variance_m2 + plane_floor2;
+  if (merged_mse_m2 > params_.merge_sigma_factor * params_.merge_sigma_factor * merged_variance_m2 + plane_floor2)
+    return false;
+
+  const double combined_sigma_rad = std::sqrt(large.normal_sigma_rad * large.normal_sigma_rad +
+                                              small.normal_sigma_rad * small.normal_sigma_rad);
+  return std::abs(n.dot(small.plane.normal)) >= std::cos(maxAngleRad(combined_sigma_rad));
+}
+
+double CellClustering::maxAngleRad(double normal_sigma_rad) const
+{
+  return std::min(params_.max_angle_deg * kPi / 180.0,
+                  params_.min_angle_deg * kPi / 180.0 + params_.angle_sigma_factor * normal_sigma_rad);
 }
 
 CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<MomentPlane>& cell_planes,
@@ -189,6 +222,7 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
     node.state = NodeState::kNone;
     if (!planarCell(grid, i, cell_planes[i], noise)) continue;
     node.stats = PlaneNode(grid.moments(i), cell_planes[i], noise);
+    node.fitted_count = node.stats.moments.count;
     node.state = NodeState::kActive;
   }
   for (int i = 0; i < count; ++i)
@@ -205,7 +239,9 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
     push({nodes[i].stats.plane.mse_m2, i, 0});
   }
 
-  std::vector<int> scratch;
+  thread_local std::vector<unsigned> seen;
+  seen.assign(static_cast<std::size_t>(count), 0);
+  unsigned stamp = 0;
   std::vector<std::pair<double, int>> candidates;
   const double max_plane_sigma_rad = params_.max_plane_normal_sigma_deg * kPi / 180.0;
   while (!heap.empty())
@@ -220,15 +256,18 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
     // Retired neighbours stay: a node that found no partner when it was
     // taken (its neighbours then were small and noisy) joins a plane that
     // grows up to it later.
-    scratch.clear();
+    // (Deduplicated with a stamp per node rather than by sorting: a large
+    // plane's border holds hundreds of ids and it is taken many times.)
+    ++stamp;
+    std::size_t kept = 0;
     for (const int neighbour : node.neighbours)
     {
       const int root = findRoot(parent, neighbour);
-      if (root != entry.node) scratch.push_back(root);
+      if (root == entry.node || seen[root] == stamp) continue;
+      seen[root] = stamp;
+      node.neighbours[kept++] = root;
     }
-    std::sort(scratch.begin(), scratch.end());
-    scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
-    node.neighbours = scratch;
+    node.neighbours.resize(kept);
 
     // Every compatible neighbour is absorbed, best (smallest merged MSE)
     // first and each re-tested against the grown node: one pop per ring of
@@ -249,8 +288,15 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
       double merged_mse_m2 = first_mse_m2;
       if (absorbed > 0 && !compatible(node.stats, other.stats, noise, merged_mse_m2)) continue;
       const PlaneMoments merged = node.stats.moments + other.stats.moments;
-      const MomentPlane merged_plane = fitMomentPlane(merged);
-      if (!merged_plane.valid) continue;  // cannot happen for two planar nodes; be safe anyway
+      MomentPlane merged_plane;
+      if (merged.count > kRefitGrowth * node.fitted_count)
+      {
+        merged_plane = refitMomentPlane(merged, node.stats.plane.normal);
+        if (!merged_plane.valid) continue;  // cannot happen for two planar nodes; be safe anyway
+        node.fitted_count = merged.count;
+      }
+      else
+        merged_plane = withNormal(node.stats.plane, merged);
       parent[neighbour] = entry.node;
       other.state = NodeState::kMerged;
       node.stats = PlaneNode(merged, merged_plane, noise);
@@ -283,7 +329,8 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
     if (plane_of_node[root] < 0)
     {
       plane_of_node[root] = static_cast<int>(result.planes.size());
-      result.planes.push_back(nodes[root].stats.plane);
+      const MomentPlane fitted = fitMomentPlane(nodes[root].stats.moments);
+      result.planes.push_back(fitted.valid ? fitted : nodes[root].stats.plane);
       result.moments.push_back(nodes[root].stats.moments);
       result.cell_counts.push_back(nodes[root].cells);
     }
@@ -400,11 +447,7 @@ bool CellClustering::continuous(const PlaneNode& p, const PlaneMoments& p_seam, 
 {
   if (p_seam.count < 3.0 || q_seam.count < 3.0) return false;
   const double cos_angle = std::min(1.0, std::abs(p.plane.normal.dot(q.plane.normal)));
-  const double max_angle_deg =
-      std::min(params_.max_angle_deg, params_.min_angle_deg + params_.angle_sigma_factor *
-                                                                  std::hypot(p.normal_sigma_rad, q.normal_sigma_rad) *
-                                                                  180.0 / kPi);
-  if (cos_angle < std::cos(max_angle_deg * kPi / 180.0)) return false;
+  if (cos_angle < std::cos(maxAngleRad(std::hypot(p.normal_sigma_rad, q.normal_sigma_rad)))) return false;
   // Along the mean normal, the two sides of the seam must be at one height:
   // within the uncertainty of their means, plus what the kink between the
   // two planes allows over the distance between them.

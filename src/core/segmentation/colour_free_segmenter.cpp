@@ -96,7 +96,7 @@ CellPlanes ColourFreeSegmenter::labelPlanes(const RgbdFrame& frame, const cv::Ma
   StageClock clock;
   const PixelRays rays(frame.camera);
   const CellGrid grid(frame, rays, cellPx(frame.width_px()), excluded, params_.parallel);
-  const std::vector<MomentPlane> cell_planes = fitCellPlanes(grid, params_.clustering.min_cell_fill);
+  const std::vector<MomentPlane> cell_planes = fitCellPlanes(grid, params_.clustering.min_cell_fill, params_.parallel);
   DepthNoise noise;
   noise.floor_m = params_.noise_floor_m;
   noise.sigma_at_1m_m = params_.estimate_noise ? measuredNoiseAt1m(grid) : params_.noise_at_1m_m;

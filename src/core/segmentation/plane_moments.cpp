@@ -63,4 +63,46 @@ MomentPlane fitMomentPlane(const PlaneMoments& moments)
   plane.valid = plane.normal.allFinite();
   return plane;
 }
+MomentPlane refitMomentPlane(const PlaneMoments& moments, const Eigen::Vector3d& normal_guess)
+{
+  if (moments.count < 3.0) return fitMomentPlane(moments);
+  const Eigen::Matrix3d c = moments.covariance();
+  // adj(C) n is C^-1 n scaled by det(C): the same direction without the
+  // division, and still defined when the points are exactly planar.
+  Eigen::Matrix3d adjugate;
+  adjugate(0, 0) = c(1, 1) * c(2, 2) - c(1, 2) * c(1, 2);
+  adjugate(0, 1) = c(0, 2) * c(1, 2) - c(0, 1) * c(2, 2);
+  adjugate(0, 2) = c(0, 1) * c(1, 2) - c(0, 2) * c(1, 1);
+  adjugate(1, 1) = c(0, 0) * c(2, 2) - c(0, 2) * c(0, 2);
+  adjugate(1, 2) = c(0, 1) * c(0, 2) - c(0, 0) * c(1, 2);
+  adjugate(2, 2) = c(0, 0) * c(1, 1) - c(0, 1) * c(0, 1);
+  adjugate(1, 0) = adjugate(0, 1);
+  adjugate(2, 0) = adjugate(0, 2);
+  adjugate(2, 1) = adjugate(1, 2);
+  Eigen::Vector3d normal = normal_guess;
+  for (int step = 0; step < 2; ++step)
+  {
+    const Eigen::Vector3d next = adjugate * normal;
+    const double length = next.norm();
+    if (!(length > 1e-300)) return fitMomentPlane(moments);
+    normal = next / length;
+  }
+  // The in-plane 2 x 2 covariance gives the two larger eigenvalues.
+  const Eigen::Vector3d u_axis = normal.unitOrthogonal(), v_axis = normal.cross(u_axis);
+  const double cuu = u_axis.dot(c * u_axis), cvv = v_axis.dot(c * v_axis), cuv = u_axis.dot(c * v_axis);
+  const double half_sum = 0.5 * (cuu + cvv), half_difference = 0.5 * (cuu - cvv);
+  const double narrow = half_sum - std::sqrt(half_difference * half_difference + cuv * cuv);
+  const double mse = normal.dot(c * normal);
+  // Converged only when the normal's variance is clearly the smallest.
+  if (!(narrow > 4.0 * mse) || !(narrow > 1e-12)) return fitMomentPlane(moments);
+
+  MomentPlane plane;
+  plane.count = moments.count;
+  plane.centroid_m = moments.mean();
+  plane.normal = normal.dot(plane.centroid_m) > 0.0 ? -normal : normal;
+  plane.mse_m2 = std::max(0.0, mse);
+  plane.narrow_variance_m2 = narrow;
+  plane.valid = plane.normal.allFinite();
+  return plane;
+}
 }  // namespace brick_pose

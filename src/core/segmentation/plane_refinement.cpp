@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 
 #include <opencv2/core/utility.hpp>
 
@@ -115,11 +113,14 @@ private:
   float sigma_at_1m_, sigma_floor_, sigma_factor_, floor_;
 };
 
-/// Cells inside a plane: labelled, with no other plane among their eight
-/// neighbours. A neighbour without a plane (a depth edge, a dropout, a
-/// crease cell) does not make a cell contested: the cell passed its own
-/// planarity tests, and the pixels beyond it are reached by growth anyway.
-std::vector<std::uint8_t> innerCells(const CellGrid& grid, const std::vector<int>& cell_labels)
+/// Cells inside a plane: labelled, with no plane of another region among
+/// their eight neighbours. A neighbour without a plane (a depth edge, a
+/// dropout, a crease cell) does not make a cell contested: the cell passed
+/// its own planarity tests, and the pixels beyond it are reached by growth
+/// anyway. Nor does a plane of the same region (pieces of one bent
+/// surface): which of the two takes a pixel there changes no segment.
+std::vector<std::uint8_t> innerCells(const CellGrid& grid, const std::vector<int>& cell_labels,
+                                     const std::vector<int>& regions)
 {
   const int cols = grid.cols(), rows = grid.rows();
   std::vector<std::uint8_t> inner(static_cast<std::size_t>(grid.size()), 0);
@@ -131,7 +132,10 @@ std::vector<std::uint8_t> innerCells(const CellGrid& grid, const std::vector<int
       bool surrounded = true;
       for (int r = std::max(0, row - 1); r <= std::min(rows - 1, row + 1) && surrounded; ++r)
         for (int c = std::max(0, col - 1); c <= std::min(cols - 1, col + 1) && surrounded; ++c)
-          surrounded = cell_labels[r * cols + c] == label || cell_labels[r * cols + c] < 0;
+        {
+          const int other = cell_labels[r * cols + c];
+          surrounded = other < 0 || regions[other] == regions[label];
+        }
       inner[row * cols + col] = surrounded ? 1 : 0;
     }
   return inner;
@@ -186,7 +190,7 @@ void refinePlaneLabels(const RgbdFrame& frame, const PixelRays& rays, const Cell
   const int cols = grid.cols(), rows = grid.rows(), cell_px = grid.cellPx();
   const std::vector<int>& cell_labels = cell_planes.cell_labels;
 
-  const std::vector<std::uint8_t> inner = innerCells(grid, cell_labels);
+  const std::vector<std::uint8_t> inner = innerCells(grid, cell_labels, cell_planes.regions);
   std::vector<std::uint8_t> plane_has_inner(cell_planes.planes.size(), 0);
   for (int cell = 0; cell < grid.size(); ++cell)
     if (inner[cell]) plane_has_inner[cell_labels[cell]] = 1;
@@ -297,7 +301,8 @@ void refinePlaneLabels(const RgbdFrame& frame, const PixelRays& rays, const Cell
       if (z == 0.0f || !tester.onPlane(label, nu, nv, z, distance)) continue;
       if (current >= 0)
       {
-        if (lost[next] == label) continue;
+        // Within one region either plane will do.
+        if (lost[next] == label || cell_planes.regions[current] == cell_planes.regions[label]) continue;
         if (lost[next] < 0) contested.push_back(next);
         const bool wins = tester.closerAround(label, current, nu, nv, params.contest_radius_px);
         lost[next] = wins ? current : label;
@@ -309,13 +314,8 @@ void refinePlaneLabels(const RgbdFrame& frame, const PixelRays& rays, const Cell
   }
   for (const int pixel : contested) lost[pixel] = -1;
   if (inner_cells) *inner_cells = inner;
-  if (std::getenv("CF_DEBUG"))
-  {
-    int inner_count = 0;
-    for (auto c : inner) inner_count += c;
-    std::fprintf(stderr, "refine: cells %d inner %d planes %zu queue %zu\n", grid.size(), inner_count, cell_planes.planes.size(), queue.size());
-  }
 }
+
 std::vector<PlaneSeam> planeBorders(const RgbdFrame& frame, const PixelRays& rays, const CellGrid& grid,
                                       const cv::Mat& labels, const std::vector<std::uint8_t>& inner_cells)
 {
