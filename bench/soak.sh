@@ -10,7 +10,7 @@
 #   bench/soak.sh                      10 minutes
 #   SOAK_MINUTES=3 bench/soak.sh
 set -uo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd -P "$(dirname "$0")/.." && pwd)
 export PATH=/usr/bin:/bin:$PATH
 set +u
 # shellcheck disable=SC1091
@@ -85,7 +85,7 @@ field() { echo "$json" | grep -oE "\"$1\": [0-9.]+" | grep -oE '[0-9.]+$'; }
   echo "manager RSS, mean of a minute: ${rss_first_min} MB just after warm-up, ${rss_last_min} MB at the end;" \
        "growth $(awk -v a="$rss_first_min" -v b="$rss_last_min" 'BEGIN { printf "%+.1f", b - a }') MB"
   echo "service: $(field service_calls) calls, $(field service_answered) answered with a pose, p95 $(field service_p95_ms) ms"
-  echo "rates: detections $(field detection_rate_hz) Hz of a $(field camera_rate_hz) Hz camera"
+  echo "rates: detections $(field rate_hz) Hz of a $(field camera_rate_hz) Hz camera"
   echo "latency: p50 $(field latency_p50_ms) ms, p95 $(field latency_p95_ms) ms"
   [[ $manager_died -eq 0 ]] || echo "MANAGER DIED (see soak_launch.log)"
   echo "rss samples: soak_rss.csv; brick_pose_latency output:"

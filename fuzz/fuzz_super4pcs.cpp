@@ -55,6 +55,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   params.lcp_sample_size = input.ConsumeIntegralInRange<int>(4, 64);
   params.refine_iterations = input.ConsumeIntegralInRange<int>(0, 5);
   params.seed = input.ConsumeIntegral<std::uint8_t>();
+  // Whole-view mode too: scan normals estimated, view checks, symmetries.
+  if (input.ConsumeBool())
+  {
+    params.view.mode = registration::ViewMode::kOn;
+    params.view.max_candidates = input.ConsumeIntegralInRange<int>(1, 200);
+    params.view.viewpoint_m = Eigen::Vector3d(consumeCoordinate(input), consumeCoordinate(input), consumeCoordinate(input));
+  }
   const bool with_normals = input.ConsumeBool();
 
   const PointSet source = consumePointSet(input, with_normals);
@@ -62,15 +69,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   try
   {
-    const registration::Super4PCS super4pcs(params);
+    const registration::Super4PCS super4pcs(params);  // may throw ConfigError (a NaN viewpoint)
     const registration::RegistrationResult result = super4pcs.align(source, target);
     if (result.success)
     {
       fuzz::require(result.source_to_target.matrix().allFinite());
       fuzz::require(result.lcp_score >= 0.0 && result.lcp_score <= 1.0);
+      fuzz::require(result.confidence >= 0.0 && result.confidence <= 1.0);
     }
   }
   catch (const InputError&)
+  {
+  }
+  catch (const ConfigError&)
   {
   }
   return 0;

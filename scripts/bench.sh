@@ -3,7 +3,7 @@
 # tool prints a table and one JSON line; everything is also kept under
 # bench/results/. Run on an otherwise idle machine: the figures are timings.
 set -uo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd -P "$(dirname "$0")/.." && pwd)
 # shellcheck source=scripts/ros_env.sh
 source "$root/scripts/ros_env.sh"
 bin=$root/ws/devel/lib/brick_pose
@@ -27,17 +27,27 @@ run_bench bench_frontend --frames "$frames"
 run_bench bench_registration --frames "$frames"
 run_bench bench_pose --frames "$frames" --out "$results"
 
-# End-to-end latency of the running pipeline (frame arrival to tf) with one
-# brick at 30 Hz, and service calls meanwhile.
-echo "== pipeline latency: synthetic D415 at 30 Hz, one brick"
+# End-to-end latency of the running pipeline (frame arrival to tf) at 30 Hz,
+# service calls meanwhile: one brick, then the piles users run (issue 14),
+# each in a fresh launch. LATENCY_S sets each run's length.
 export ROS_MASTER_URI=http://127.0.0.1:${BENCH_PORT:-11412}
 export ROS_HOSTNAME=127.0.0.1
-roslaunch --port "${ROS_MASTER_URI##*:}" "$root/launch/demo.launch" scene:=single rate_hz:=30 \
-  >"$results/pipeline_latency.log" 2>&1 &
-launch_pid=$!
-sleep 8
-"$bin/brick_pose_latency" --duration-s 30 --warmup-s 5 2>&1 | tee "$results/pipeline_latency.txt"
-[[ ${PIPESTATUS[0]} -eq 0 ]] || status=1
-kill -INT "$launch_pid" 2>/dev/null
-wait "$launch_pid" 2>/dev/null
+latency_s=${LATENCY_S:-30}
+run_latency() {  # run_latency LABEL roslaunch-args...
+  local label=$1; shift
+  echo "== pipeline latency ($label): synthetic D415 at 30 Hz, $*"
+  roslaunch --port "${ROS_MASTER_URI##*:}" "$root/launch/demo.launch" rate_hz:=30 "$@" \
+    >"$results/pipeline_latency_$label.log" 2>&1 &
+  local launch_pid=$!
+  sleep 8
+  "$bin/brick_pose_latency" --duration-s "$latency_s" --warmup-s 5 --label "${label}_" 2>&1 |
+    tee "$results/pipeline_latency_$label.txt"
+  [[ ${PIPESTATUS[0]} -eq 0 ]] || status=1
+  kill -INT "$launch_pid" 2>/dev/null
+  wait "$launch_pid" 2>/dev/null
+}
+run_latency single scene:=single seed:=1
+run_latency pile scene:=organised_pile seed:=2
+run_latency pile_unorganised scene:=unorganised_pile seed:=2
+run_latency pile_848 scene:=organised_pile seed:=2 resolution:=848x480
 exit $status

@@ -2,7 +2,7 @@
 # Builds brick_pose in Release in a catkin workspace kept inside the repository
 # (ws/, git-ignored): ws/src/brick_pose is a link back to the repository root.
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd -P "$(dirname "$0")/.." && pwd)
 # Debian's catkin needs the system python3 (a pyenv python3 lacks catkin_pkg).
 export PATH=/usr/bin:/bin:$PATH
 # The package in the workspace is a folder of links to the repository's

@@ -3,7 +3,7 @@
 # is installed (roslaunch alone would only say "resource not found"), then
 # runs launch/d415.launch with the given arguments.
 set -uo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd -P "$(dirname "$0")/.." && pwd)
 # shellcheck source=scripts/ros_env.sh
 source "$root/scripts/ros_env.sh"
 if ! rospack find realsense2_camera >/dev/null 2>&1; then

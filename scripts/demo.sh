@@ -3,7 +3,7 @@
 # headless; prints what is published, then stops. Extra arguments go to
 # roslaunch (e.g. scene:=organised_pile lighting:=sunlight seed:=7).
 set -uo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd -P "$(dirname "$0")/.." && pwd)
 # shellcheck source=scripts/ros_env.sh
 source "$root/scripts/ros_env.sh"
 export ROS_MASTER_URI=http://127.0.0.1:${BRICK_POSE_DEMO_PORT:-11411}

@@ -9,7 +9,7 @@
 #   scripts/fuzz.sh                      all targets, 30 s each
 #   FUZZ_SECONDS=300 scripts/fuzz.sh fuzz_front_end
 set -uo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd -P "$(dirname "$0")/.." && pwd)
 export PATH=/usr/bin:/bin:$PATH
 build_dir=${FUZZ_BUILD_DIR:-$root/ws/fuzz}
 seconds=${FUZZ_SECONDS:-30}

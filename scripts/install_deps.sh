@@ -8,8 +8,8 @@ packages=(
   build-essential cmake ccache pkg-config
   catkin python3-catkin-pkg
   ros-core-dev libnodeletlib-dev libnodelet-dev libnodeletlib-tools pluginlib-dev
-  libcv-bridge-dev libimage-transport-dev libimage-geometry-dev libmessage-filters-dev
-  libtf2-ros-dev libtf2-eigen-dev libtf2-geometry-msgs-dev libtf2-msgs-dev
+  libcv-bridge-dev libimage-transport-dev libmessage-filters-dev
+  libtf2-ros-dev libtf2-eigen-dev libtf2-msgs-dev
   libpcl-conversions-dev libpcl-dev libopencv-dev libeigen3-dev
   python3-rostest python3-roslaunch librostest-dev rosbash
   librosbag-dev python3-rosbag ros-sensor-msgs ros-geometry-msgs

@@ -3,7 +3,7 @@
 # fails. `catkin_make run_tests` exits 0 on failures, so the verdict comes
 # from catkin_test_results over the result files.
 set -uo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd -P "$(dirname "$0")/.." && pwd)
 # shellcheck source=scripts/ros_env.sh
 source "$root/scripts/ros_env.sh"
 cd "$root/ws"
@@ -16,6 +16,8 @@ echo "brick_pose: running tests (log in ws/test.log)"
 catkin_make tests -j"$(nproc)" >"$root/ws/test.log" 2>&1 &&
   catkin_make run_tests -j1 >>"$root/ws/test.log" 2>&1
 build_status=$?
+# Last: `catkin_make install`, then a rostest and the demo from the install space.
+"$root/scripts/install_check.sh"
 # Per-test lines for the reader, then the verdict.
 grep -E "^\[ *(OK|FAILED) *\]|^\[  PASSED  \]|^\[  FAILED  \]|^-- run_tests.py|^\[ROSTEST\]|FAILURE" "$root/ws/test.log" | grep -v "^-- run_tests.py: verify result" || true
 summary=$(catkin_test_results "$results" 2>&1)

@@ -7,7 +7,7 @@
 # reports (ASan aborts the test; UBSan is built with -fno-sanitize-recover, and
 # the log is also scanned in case a report slipped out of a forked process).
 set -uo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd -P "$(dirname "$0")/.." && pwd)
 export PATH=/usr/bin:/bin:$PATH
 build_dir=$root/ws/sanitize
 log=$build_dir/ctest.log

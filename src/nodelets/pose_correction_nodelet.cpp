@@ -1,24 +1,21 @@
-// brick_pose/PoseCorrection: stage 6 and the product. Refines each Super4PCS
+// brick_pose/PoseCorrection: stage 5 and the product. Refines each initial
 // pose (constant-time correction by default, ICP or none by ~refinement),
-// then publishes every brick of the frame:
-//  - tf frames brick_<type>_<n>, children of the camera's optical frame, n in
-//    nearest-first order per type;
+// gives every brick a stable identity, then publishes the frame's bricks:
+//  - tf frames brick_<type>_<id>, children of the camera's optical frame;
+//    an id stays with the same physical brick (pose/brick_tracker.h);
 //  - `detections` (brick_pose/BrickDetectionArray) with timings and latency;
 //  - `markers` (visualization_msgs/MarkerArray, only when subscribed);
 //  - the `get_brick_pose` service (brick_pose/GetBrickPose), answered from
 //    the latest detections on a thread of its own: the manager's workers may
 //    all be busy (long frames in every stage, or a camera driver sharing the
-//    manager) and a grasp planner must still get its answer.
+//    manager) and a grasp planner must still get its answer. Which brick it
+//    answers with is the core's rule (pose/brick_selection.h).
 
-#include <map>
 #include <mutex>
-#include <sstream>
 
 #include <dynamic_reconfigure/server.h>
-#include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/callback_queue.h>
-#include <ros/ros.h>
 #include <tf2_eigen/tf2_eigen.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -29,26 +26,27 @@
 #include "brick_pose/GetBrickPose.h"
 #include "brick_pose/PoseCorrectionConfig.h"
 #include "brick_pose/common/errors.h"
-#include "brick_pose/pose/brick_selection.h"
 #include "brick_pose/pipeline/pipeline_config.h"
+#include "brick_pose/pose/brick_selection.h"
+#include "brick_pose/pose/brick_tracker.h"
 #include "brick_pose/ros/brick_markers.h"
 #include "brick_pose/ros/conversions.h"
-#include "brick_pose/ros/param_lookup.h"
-#include "brick_pose/ros/pipeline_messages.h"
+#include "brick_pose/ros/stage_nodelet.h"
 
 namespace brick_pose
 {
 namespace
 {
+using ros_conversions::fromPose;
+
 geometry_msgs::Vector3 toVector3(const Eigen::Vector3d& vector)
 {
   geometry_msgs::Vector3 message;
-  message.x = vector.x();
-  message.y = vector.y();
-  message.z = vector.z();
+  tf2::toMsg(vector, message);
   return message;
 }
 
+/// The selection's view of a frame's detections.
 std::vector<DetectedBrick> detectedBricksOf(const BrickDetectionArray& detections)
 {
   std::vector<DetectedBrick> bricks;
@@ -56,30 +54,30 @@ std::vector<DetectedBrick> detectedBricksOf(const BrickDetectionArray& detection
   {
     DetectedBrick brick;
     brick.type_name = detection.type;
-    brick.T_cam_brick = ros_conversions::fromPose(detection.pose.pose);
+    brick.T_cam_brick = fromPose(detection.pose.pose);
     brick.dimensions_m = Eigen::Vector3d(detection.dimensions.x, detection.dimensions.y, detection.dimensions.z);
     brick.fitness = detection.fitness;
+    brick.complete_face = detection.complete_face;
+    brick.id = detection.id;
     bricks.push_back(brick);
   }
   return bricks;
 }
 
-/// "2 green, 1 blue" for a failure message.
-std::string typeCounts(const BrickDetectionArray& detections)
+std::size_t findFrame(const BrickDetectionArray& detections, const std::string& frame)
 {
-  std::map<std::string, int> counts;
-  for (const BrickDetection& detection : detections.detections)
-    ++counts[detection.type];
-  std::ostringstream text;
-  for (const auto& [type, count] : counts)
-    text << (text.tellp() > 0 ? ", " : "") << count << " " << type;
-  return counts.empty() ? "none" : text.str();
+  for (std::size_t i = 0; i < detections.detections.size(); ++i)
+    if (detections.detections[i].frame == frame) return i;
+  throw InputError("no brick '" + frame + "' in the latest frame (seen: " +
+                   describeBricks(detectedBricksOf(detections)) + ")");
 }
 }  // namespace
 
-class PoseCorrectionNodelet : public nodelet::Nodelet
+class PoseCorrectionNodelet : public StageNodelet
 {
 public:
+  PoseCorrectionNodelet() : StageNodelet("pose_correction", "registered", "bricks") {}
+
   ~PoseCorrectionNodelet() override
   {
     // Stop answering before the members the service reads go away.
@@ -88,27 +86,19 @@ public:
   }
 
 private:
-  void onInit() override
+  void initStage(const ParamLookup& lookup) override
   {
-    ros::NodeHandle& node = getNodeHandle();
-    ros::NodeHandle& private_node = getPrivateNodeHandle();
-    const ParamLookup lookup = rosParamLookup(private_node, node);
-    try
-    {
-      catalogue_ = catalogueFrom(lookup);
-      estimator_ = std::make_unique<BrickPoseEstimator>(catalogue_, estimatorParamsFrom(lookup));
-    }
-    catch (const ConfigError& e)
-    {
-      NODELET_ERROR("pose correction not started: %s", e.what());
-      return;
-    }
+    catalogue_ = catalogueFrom(lookup);
+    estimator_ = std::make_unique<BrickPoseEstimator>(catalogue_, estimatorParamsFrom(lookup));
+    tracker_ = BrickTracker(trackerParamsFrom(lookup));
+    tracked_params_ = trackedPoseParamsFrom(lookup);
     tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
     tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_, getMTNodeHandle());
-    detections_publisher_ = node.advertise<BrickDetectionArray>("detections", 5);
-    markers_publisher_ = node.advertise<visualization_msgs::MarkerArray>("markers", 2);
-    registrations_subscriber_ = node.subscribe("registrations", 2, &PoseCorrectionNodelet::onRegistrations, this);
-    advertiseService(node);
+    detections_publisher_ = node().advertise<BrickDetectionArray>("detections", 5);
+    markers_publisher_ = node().advertise<visualization_msgs::MarkerArray>("markers", 2);
+    registrations_subscriber_ =
+        node().subscribe("registrations", stageParams().queue_size, &PoseCorrectionNodelet::onRegistrations, this);
+    advertiseService(node());
     startReconfigure();
   }
 
@@ -160,75 +150,111 @@ private:
 
   void onRegistrations(const RegistrationsMessageConstPtr& registrations)
   {
+    frameIn();
+    const FrameMessage& frame = *registrations->candidates->frame;
     const ros::WallTime start = ros::WallTime::now();
     const auto& candidates = registrations->candidates->front_end.candidates;
     std::vector<BrickPoseEstimate> estimates;
+    std::vector<const BrickCandidate*> refined;
+    std::vector<std::string> sources;
     for (const RegisteredCandidate& registered : registrations->registered)
     {
+      const BrickCandidate& candidate = candidates[registered.candidate_index];
       try
       {
-        estimates.push_back(estimator_->refine(candidates[registered.candidate_index], registered.registration));
+        std::string source = registered.tracked ? "tracked" : "registered";
+        estimates.push_back(refineTrackingMoves(candidate, registered, source));
+        refined.push_back(&candidate);
+        sources.push_back(source);
       }
       catch (const InputError& e)
       {
-        NODELET_WARN_THROTTLE(2.0, "frame %.3f: %s brick not refined: %s", registrations->header.stamp.toSec(),
-                              candidates[registered.candidate_index].type_name.c_str(), e.what());
+        itemDropped("not refined");
+        NODELET_WARN_THROTTLE(2.0, "%s: %s brick not refined: %s", frameLabel(frame).c_str(),
+                              candidate.type_name.c_str(), e.what());
       }
     }
+    itemsProcessed(static_cast<int>(registrations->registered.size()), static_cast<int>(estimates.size()));
     const double refinement_ms = (ros::WallTime::now() - start).toSec() * 1e3;
-    auto detections = makeDetections(*registrations, estimates);
+    auto detections = makeDetections(*registrations, estimates, refined, sources);
     detections->refinement_ms = refinement_ms;
-    publish(detections, registrations->candidates->frame->arrival);
+    publish(detections, frame);
+  }
+
+  /// Refines the initial pose. A tracked pose whose correction is larger
+  /// than a static brick's noise says the brick moved or its pose jumped: it
+  /// is registered afresh with Super4PCS and refined from there.
+  BrickPoseEstimate refineTrackingMoves(const BrickCandidate& candidate, const RegisteredCandidate& registered,
+                                        std::string& source)
+  {
+    BrickPoseEstimate estimate = estimator_->refine(candidate, registered.registration);
+    if (!registered.tracked || !correctionSaysMoved(estimate.correction, tracked_params_)) return estimate;
+    NODELET_DEBUG("%s brick moved (correction %.1f mm, %.2f deg): registered afresh", candidate.type_name.c_str(),
+                  1e3 * estimate.correction.offset_m.norm(), estimate.correction.yawDeg());
+    source = "registered (moved)";
+    return estimator_->refine(candidate, estimator_->registerCandidate(candidate));
   }
 
   boost::shared_ptr<BrickDetectionArray> makeDetections(const RegistrationsMessage& registrations,
-                                                        const std::vector<BrickPoseEstimate>& estimates) const
+                                                        const std::vector<BrickPoseEstimate>& estimates,
+                                                        const std::vector<const BrickCandidate*>& candidates,
+                                                        const std::vector<std::string>& sources)
   {
     auto detections = boost::make_shared<BrickDetectionArray>();
     detections->header = registrations.header;
-    detections->frontend_ms = registrations.candidates->front_end.timings.total_ms;
+    const FrontEndTimings& timings = registrations.candidates->front_end.timings;
+    detections->frontend_ms = timings.total_ms;
+    detections->segmentation_ms = timings.segmentation_ms;
+    detections->cloud_ms = timings.cloud.total();
+    detections->roi_ms = timings.roi_ms;
     detections->registration_ms = registrations.registration_ms;
-    const auto& candidates = registrations.candidates->front_end.candidates;
-    std::vector<DetectedBrick> bricks;
+    std::vector<TrackerObservation> observations;
+    for (const BrickPoseEstimate& estimate : estimates) observations.push_back({estimate.type_name, estimate.pose});
+    const std::vector<TrackedBrick> tracked = tracker_.update(observations, registrations.header.stamp.toSec());
     for (std::size_t i = 0; i < estimates.size(); ++i)
-    {
-      const BrickPoseEstimate& estimate = estimates[i];
-      BrickDetection detection;
-      detection.type = estimate.type_name;
-      detection.pose.header = registrations.header;
-      detection.pose.pose = ros_conversions::toPose(estimate.pose);
-      detection.dimensions = toVector3(estimate.dimensions_m);
-      detection.fitness = estimate.registration.result.lcp_score;
-      detection.registration_pose = ros_conversions::toPose(estimate.registration.pose);
-      detection.refinement = toString(estimate.refinement);
-      detection.correction_yaw_deg = estimate.correction.yawDeg();
-      detection.correction_tilt_deg = estimate.correction.tiltDeg();
-      detection.correction_translation_mm = toVector3(1000.0 * estimate.correction.offset_m);
-      detection.registration_ms = estimate.registration.elapsed_ms;
-      detection.refinement_ms = estimate.refinement_ms;
-      detection.complete_face = candidates[registrations.registered[i].candidate_index].complete;
-      detections->detections.push_back(detection);
-      bricks.push_back({estimate.type_name, estimate.pose, estimate.dimensions_m, detection.fitness});
-    }
-    nameFramesAndMarkPickable(bricks, *detections);
+      detections->detections.push_back(
+          makeDetection(estimates[i], *candidates[i], tracked[i], sources[i], registrations.header));
+    markPickable(*detections);
     return detections;
   }
 
-  /// brick_<type>_<n>, n counting each type's bricks nearest first.
-  static void nameFramesAndMarkPickable(const std::vector<DetectedBrick>& bricks, BrickDetectionArray& detections)
+  static BrickDetection makeDetection(const BrickPoseEstimate& estimate, const BrickCandidate& candidate,
+                                      const TrackedBrick& tracked, const std::string& source,
+                                      const std_msgs::Header& header)
   {
+    BrickDetection detection;
+    detection.type = estimate.type_name;
+    detection.id = tracked.id;
+    detection.frame = "brick_" + estimate.type_name + "_" + std::to_string(tracked.id);
+    detection.pose.header = header;
+    detection.pose.pose = tf2::toMsg(tracked.pose);
+    detection.dimensions = toVector3(estimate.dimensions_m);
+    detection.fitness = estimate.registration.result.lcp_score;
+    detection.complete_face = candidate.complete;
+    detection.partial_reason =
+        candidate.complete ? "" : (candidate.partial_reason.empty() ? "top face not wholly in view" : candidate.partial_reason);
+    detection.pose_source = source;
+    detection.registration_pose = tf2::toMsg(estimate.registration.pose);
+    detection.refinement = toString(estimate.refinement);
+    detection.correction_yaw_deg = estimate.correction.yawDeg();
+    detection.correction_tilt_deg = estimate.correction.tiltDeg();
+    detection.correction_translation_mm = toVector3(1000.0 * estimate.correction.offset_m);
+    detection.registration_ms = estimate.registration.elapsed_ms;
+    detection.refinement_ms = estimate.refinement_ms;
+    return detection;
+  }
+
+  /// Pickable: a complete face that nothing rests on (every brick, complete
+  /// or not, counts for covering).
+  static void markPickable(BrickDetectionArray& detections)
+  {
+    const std::vector<DetectedBrick> bricks = detectedBricksOf(detections);
     if (bricks.empty()) return;
-    std::map<std::string, int> next_number;
-    for (std::size_t index : orderBricks(bricks, SelectionPolicy::kNearest))
-    {
-      BrickDetection& detection = detections.detections[index];
-      detection.frame = "brick_" + detection.type + "_" + std::to_string(next_number[detection.type]++);
-    }
     try
     {
-      const std::vector<bool> pickable = pickableMask(bricks);
+      const std::vector<bool> uncovered = pickableMask(bricks);
       for (std::size_t i = 0; i < bricks.size(); ++i)
-        detections.detections[i].pickable = pickable[i];
+        detections.detections[i].pickable = uncovered[i] && bricks[i].complete_face;
     }
     catch (const InputError&)
     {
@@ -236,19 +262,18 @@ private:
     }
   }
 
-  void publish(const boost::shared_ptr<BrickDetectionArray>& detections, const ros::WallTime& arrival)
+  void publish(const boost::shared_ptr<BrickDetectionArray>& detections, const FrameMessage& frame)
   {
     std::vector<geometry_msgs::TransformStamped> frames;
     for (const BrickDetection& detection : detections->detections)
     {
-      geometry_msgs::TransformStamped transform;
+      geometry_msgs::TransformStamped transform = tf2::eigenToTransform(fromPose(detection.pose.pose));
       transform.header = detections->header;
       transform.child_frame_id = detection.frame;
-      transform.transform = ros_conversions::toTransform(ros_conversions::fromPose(detection.pose.pose));
       frames.push_back(transform);
     }
     if (!frames.empty()) broadcaster_.sendTransform(frames);
-    detections->latency_ms = (ros::WallTime::now() - arrival).toSec() * 1e3;
+    detections->latency_ms = frameAgeMs(frame);
     {
       std::lock_guard<std::mutex> lock(latest_mutex_);
       latest_ = detections;
@@ -256,26 +281,10 @@ private:
     detections_publisher_.publish(BrickDetectionArrayConstPtr(detections));
     if (markers_publisher_.getNumSubscribers() > 0)
       markers_publisher_.publish(makeBrickMarkers(*detections, catalogue_));
-    NODELET_DEBUG("frame %.3f: %zu bricks, front end %.1f ms, registration %.1f ms, refinement %.3f ms, latency %.1f ms",
-                  detections->header.stamp.toSec(), detections->detections.size(), detections->frontend_ms,
+    NODELET_DEBUG("%s: %zu bricks, front end %.1f ms, registration %.1f ms, refinement %.3f ms, latency %.1f ms",
+                  frameLabel(frame).c_str(), detections->detections.size(), detections->frontend_ms,
                   detections->registration_ms, detections->refinement_ms, detections->latency_ms);
-    logThroughput(*detections);
-  }
-
-  /// One INFO line every 10 s: frames, bricks and latency, so an operator sees it run.
-  void logThroughput(const BrickDetectionArray& detections)
-  {
-    ++frames_since_log_;
-    latency_sum_ms_ += detections.latency_ms;
-    const ros::WallTime now = ros::WallTime::now();
-    if (last_log_.isZero()) last_log_ = now;
-    const double elapsed_s = (now - last_log_).toSec();
-    if (elapsed_s < 10.0) return;
-    NODELET_INFO("%.1f frames/s, last frame %zu bricks, mean latency %.1f ms", frames_since_log_ / elapsed_s,
-                 detections.detections.size(), latency_sum_ms_ / frames_since_log_);
-    frames_since_log_ = 0;
-    latency_sum_ms_ = 0.0;
-    last_log_ = now;
+    frameOut(frame, detections->refinement_ms);
   }
 
   bool onGetBrickPose(GetBrickPose::Request& request, GetBrickPose::Response& response)
@@ -306,6 +315,7 @@ private:
       detections = latest_;
     }
     if (!detections) throw InputError("no detections yet: is the camera publishing?");
+    // ROS time: a bag's own time when one plays with --clock.
     const double age_s = (ros::Time::now() - detections->header.stamp).toSec();
     if (request.max_age_s > 0.0 && age_s > request.max_age_s)
       throw InputError("data too old: the latest detections are " + std::to_string(age_s) + " s old (max_age_s " +
@@ -313,33 +323,15 @@ private:
     const std::optional<Eigen::Isometry3d> camera_T_target = targetFrameInCamera(request.target_frame, *detections);
     std::optional<Eigen::Vector3d> up_in_camera;
     if (camera_T_target) up_in_camera = camera_T_target->linear().col(2);
-    const std::size_t chosen = request.frame.empty() ? choose(*detections, policy, request.type, up_in_camera)
-                                                     : findFrame(*detections, request.frame);
+    const std::vector<DetectedBrick> bricks = detectedBricksOf(*detections);
+    const std::size_t chosen = request.id != 0        ? findBrickById(bricks, request.id)
+                               : !request.frame.empty() ? findFrame(*detections, request.frame)
+                                                        : chooseBrick(bricks, policy, request.type, up_in_camera);
     fillResponse(detections->detections[chosen], *detections, camera_T_target, request.target_frame, response);
-  }
-
-  /// Picks by policy among the bricks whose whole top face was measured: a
-  /// partly hidden face gives a good orientation but a guessed centre, not
-  /// something to grasp. They can still be asked for by their frame name.
-  static std::size_t choose(const BrickDetectionArray& detections, SelectionPolicy policy, const std::string& type,
-                            const std::optional<Eigen::Vector3d>& up_in_camera)
-  {
-    // Every brick counts for covering others; only complete ones can be chosen.
-    const std::vector<DetectedBrick> bricks = detectedBricksOf(detections);
-    const bool pickable_only = policy == SelectionPolicy::kPickable;
-    const std::vector<bool> pickable = pickable_only ? pickableMask(bricks, up_in_camera) : std::vector<bool>();
-    for (std::size_t index : orderBricks(bricks, policy, type, up_in_camera))
-      if (detections.detections[index].complete_face && (!pickable_only || pickable[index])) return index;
-    throw InputError("no " + std::string(type.empty() ? "" : type + " ") + "brick" +
-                     (policy == SelectionPolicy::kPickable ? " that nothing rests on" : "") +
-                     " with its whole top face in view in the latest frame (seen: " + typeCounts(detections) + ")");
-  }
-
-  static std::size_t findFrame(const BrickDetectionArray& detections, const std::string& frame)
-  {
-    for (std::size_t i = 0; i < detections.detections.size(); ++i)
-      if (detections.detections[i].frame == frame) return i;
-    throw InputError("no brick '" + frame + "' in the latest frame (seen: " + typeCounts(detections) + ")");
+    response.age_s = age_s;
+    char age[48];
+    std::snprintf(age, sizeof(age), ", from a frame %.2f s old", age_s);
+    response.message += age;
   }
 
   /// T_camera_target when a target frame is asked for; throws when tf cannot tell.
@@ -367,14 +359,20 @@ private:
     if (camera_T_target)
     {
       response.pose.header.frame_id = target_frame;
-      response.pose.pose = ros_conversions::toPose(camera_T_target->inverse() * ros_conversions::fromPose(detection.pose.pose));
+      response.pose.pose = tf2::toMsg(Eigen::Isometry3d(camera_T_target->inverse() * fromPose(detection.pose.pose)));
     }
     response.type = detection.type;
+    response.id = detection.id;
     response.frame = detection.frame;
     response.dimensions = detection.dimensions;
     response.fitness = detection.fitness;
+    response.complete_face = detection.complete_face;
+    response.pickable = detection.pickable;
     response.frame_stamp = detections.header.stamp;
-    response.message = "ok: " + detection.frame + (detection.pickable ? " (pickable)" : " (covered)");
+    const std::string state = detection.pickable        ? "pickable"
+                              : detection.complete_face ? "covered"
+                                                        : "partial: " + detection.partial_reason;
+    response.message = "ok: " + detection.frame + " (" + state + ")";
   }
 
   // The service thread reads only catalogue_ (never replaced) and latest_.
@@ -382,6 +380,8 @@ private:
   // Replaced whole on reconfigure, on the same single-threaded queue as the
   // registrations callback that uses it.
   std::unique_ptr<BrickPoseEstimator> estimator_;
+  BrickTracker tracker_;
+  TrackedPoseParams tracked_params_;
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<PoseCorrectionConfig>> reconfigure_;
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
@@ -395,9 +395,6 @@ private:
   std::unique_ptr<ros::AsyncSpinner> service_spinner_;
   mutable std::mutex latest_mutex_;
   BrickDetectionArrayConstPtr latest_;
-  int frames_since_log_ = 0;
-  double latency_sum_ms_ = 0.0;
-  ros::WallTime last_log_;
 };
 }  // namespace brick_pose
 

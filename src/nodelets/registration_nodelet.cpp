@@ -1,44 +1,46 @@
-// brick_pose/Registration: stage 5. Registers each candidate's artificial
-// model (the top face of its catalogue type, origin at its centre) onto the
-// segment with our Super4PCS; publishes the poses on `registrations`,
-// in-process. A candidate Super4PCS cannot register is dropped with a
-// throttled warning; the frame goes on with the others. Overlap, delta,
-// sample size and the time budget are dynamic_reconfigure parameters.
+// brick_pose/Registration: stage 4. Gives each candidate an initial pose:
+// a brick measured in recent frames (the latest `detections`) continues from
+// its last final pose (the tracked path, with refinement: correction);
+// any other gets our Super4PCS registration of its artificial model (the top
+// face of its catalogue type, origin at its centre) onto the segment.
+// Publishes the poses on `registrations`, in-process. Each Super4PCS search
+// has its own budget and the frame has
+// max_frame_registration_ms, so a pile cannot hold the pipeline up; the
+// candidates a frame's budget skipped go first in the next frame. A
+// candidate Super4PCS cannot register is dropped, counted by reason; the
+// frame goes on with the others. Overlap, delta, sample size and the time
+// budget are dynamic_reconfigure parameters.
 
 #include <dynamic_reconfigure/server.h>
-#include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
-#include <ros/ros.h>
 
+#include "brick_pose/BrickDetectionArray.h"
 #include "brick_pose/RegistrationConfig.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/pipeline/pipeline_config.h"
-#include "brick_pose/ros/param_lookup.h"
-#include "brick_pose/ros/pipeline_messages.h"
+#include "brick_pose/pose/registration_order.h"
+#include "brick_pose/pose/tracked_pose.h"
+#include "brick_pose/ros/conversions.h"
+#include "brick_pose/ros/stage_nodelet.h"
 
 namespace brick_pose
 {
-class RegistrationNodelet : public nodelet::Nodelet
+class RegistrationNodelet : public StageNodelet
 {
+public:
+  RegistrationNodelet() : StageNodelet("registration", "candidates", "registered") {}
+
 private:
-  void onInit() override
+  void initStage(const ParamLookup& lookup) override
   {
-    ros::NodeHandle& node = getNodeHandle();
-    const ParamLookup lookup = rosParamLookup(getPrivateNodeHandle(), node);
-    try
-    {
-      catalogue_ = catalogueFrom(lookup);
-      estimator_ = std::make_unique<BrickPoseEstimator>(catalogue_, estimatorParamsFrom(lookup));
-    }
-    catch (const ConfigError& e)
-    {
-      NODELET_ERROR("registration not started: %s", e.what());
-      return;
-    }
-    getPrivateNodeHandle().param("max_frame_registration_ms", max_frame_registration_ms_, 400.0);
-    node.param("max_latency_ms", max_latency_ms_, 3000.0);
-    registrations_publisher_ = node.advertise<RegistrationsMessage>("registrations", 2);
-    candidates_subscriber_ = node.subscribe("candidates", 2, &RegistrationNodelet::onCandidates, this);
+    catalogue_ = catalogueFrom(lookup);
+    estimator_ = std::make_unique<BrickPoseEstimator>(catalogue_, estimatorParamsFrom(lookup));
+    budget_ = registrationStageParamsFrom(lookup);
+    previous_poses_ = PreviousPoses(trackedPoseParamsFrom(lookup));
+    const int queue_size = stageParams().queue_size;
+    detections_subscriber_ = node().subscribe("detections", 1, &RegistrationNodelet::onDetections, this);
+    registrations_publisher_ = node().advertise<RegistrationsMessage>("registrations", queue_size);
+    candidates_subscriber_ = node().subscribe("candidates", queue_size, &RegistrationNodelet::onCandidates, this);
     startReconfigure();
   }
 
@@ -76,49 +78,94 @@ private:
     }
   }
 
+  /// The latest final poses, for the tracked path (only the correction
+  /// refines a tracked pose: with ICP or none it would never change).
+  void onDetections(const BrickDetectionArrayConstPtr& detections)
+  {
+    std::vector<PreviousPose> poses;
+    if (estimator_->params().refinement == RefinementMethod::kCorrection)
+      for (const BrickDetection& detection : detections->detections)
+        poses.push_back({detection.type, detection.id, ros_conversions::fromPose(detection.pose.pose),
+                         Eigen::Vector3d(detection.dimensions.x, detection.dimensions.y, detection.dimensions.z),
+                         detection.fitness});
+    previous_poses_.update(std::move(poses));
+  }
+
   void onCandidates(const CandidatesMessageConstPtr& candidates)
   {
+    frameIn();
+    const FrameMessage& frame = *candidates->frame;
+    if (!withinLatencyBudget(frame)) return;
     const ros::WallTime start = ros::WallTime::now();
     auto message = boost::make_shared<RegistrationsMessage>();
     message->header = candidates->header;
     message->candidates = candidates;
     const auto& list = candidates->front_end.candidates;
+    // Tracked bricks cost nothing here; the rest share the frame's budget.
+    std::vector<BrickCandidate> searched;
+    std::vector<std::size_t> searched_index;
     for (std::size_t i = 0; i < list.size(); ++i)
     {
-      // Each brick has Super4PCS's own budget; the frame has this one, so a
-      // pile of bricks cannot hold the pipeline up.
-      const double spent_ms = (ros::WallTime::now() - start).toSec() * 1e3;
-      const double age_ms = frameAgeMs(*candidates->frame);
-      if (spent_ms > max_frame_registration_ms_ || age_ms > max_latency_ms_)
+      if (const std::optional<PreviousPose> previous = previous_poses_.match(list[i]))
       {
-        NODELET_WARN_THROTTLE(2.0, "frame %.3f: %zu of %zu candidates skipped: registration took %.0f ms (budget %.0f), "
-                              "frame %.0f ms old (budget %.0f)", candidates->header.stamp.toSec(), list.size() - i,
-                              list.size(), spent_ms, max_frame_registration_ms_, age_ms, max_latency_ms_);
+        message->registered.push_back({i, registrationFromPrevious(*previous), true});
+        continue;
+      }
+      searched.push_back(list[i]);
+      searched_index.push_back(i);
+    }
+    const std::vector<std::size_t> order = order_.order(searched);
+    std::size_t skipped = 0;
+    for (std::size_t rank = 0; rank < order.size(); ++rank)
+    {
+      const double spent_ms = (ros::WallTime::now() - start).toSec() * 1e3;
+      if (spent_ms > budget_.max_frame_registration_ms)
+      {
+        skipped = order.size() - rank;
         break;
       }
-      try
-      {
-        message->registered.push_back({i, estimator_->registerCandidate(list[i])});
-      }
-      catch (const InputError& e)
-      {
-        NODELET_WARN_THROTTLE(2.0, "frame %.3f: %s candidate not registered: %s", candidates->header.stamp.toSec(),
-                              list[i].type_name.c_str(), e.what());
-      }
+      registerOne(frame, searched[order[rank]], searched_index[order[rank]], *message);
     }
+    if (skipped > 0)
+    {
+      itemDropped("skipped for the frame budget (first in the next frame)", static_cast<int>(skipped));
+      NODELET_DEBUG("%s: %zu of %zu candidates skipped after %.0f ms (max_frame_registration_ms %.0f); "
+                    "they go first in the next frame", frameLabel(frame).c_str(), skipped, searched.size(),
+                    (ros::WallTime::now() - start).toSec() * 1e3, budget_.max_frame_registration_ms);
+    }
+    itemsProcessed(static_cast<int>(list.size()), static_cast<int>(message->registered.size()));
     message->registration_ms = (ros::WallTime::now() - start).toSec() * 1e3;
     registrations_publisher_.publish(RegistrationsMessageConstPtr(message));
+    frameOut(frame, message->registration_ms);
+  }
+
+  void registerOne(const FrameMessage& frame, const BrickCandidate& candidate, std::size_t index,
+                   RegistrationsMessage& message)
+  {
+    order_.attempted(candidate);
+    try
+    {
+      message.registered.push_back({index, estimator_->registerCandidate(candidate), false});
+    }
+    catch (const InputError& e)
+    {
+      itemDropped("not registered");
+      NODELET_WARN_THROTTLE(2.0, "%s: %s candidate not registered: %s", frameLabel(frame).c_str(),
+                            candidate.type_name.c_str(), e.what());
+    }
   }
 
   BrickCatalogue catalogue_;
-  double max_frame_registration_ms_ = 400.0;
-  double max_latency_ms_ = 3000.0;
+  RegistrationStageParams budget_;
+  RegistrationOrder order_;
+  PreviousPoses previous_poses_;
   // Replaced whole on reconfigure; the subscriber and the reconfigure server
   // share the nodelet's single-threaded queue, so no lock is needed.
   std::unique_ptr<BrickPoseEstimator> estimator_;
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<RegistrationConfig>> reconfigure_;
   ros::Subscriber candidates_subscriber_;
+  ros::Subscriber detections_subscriber_;
   ros::Publisher registrations_publisher_;
 };
 }  // namespace brick_pose

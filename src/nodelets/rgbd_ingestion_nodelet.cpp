@@ -1,29 +1,34 @@
 // brick_pose/RgbdIngestion: stage 1. Synchronises a D415's aligned colour,
 // aligned depth and camera_info (realsense2_camera names under ~camera_ns,
 // remappable; image_transport for the images), validates them and publishes
-// one FrameMessage on `frame`, in-process.
+// one FrameMessage on `frame`, in-process. With ~up_frame set (e.g.
+// base_link, whose +z points up), each frame carries "up" in the camera
+// frame from tf, for the front end's top-face check.
 //
 // Depth 16UC1 (mm) and 32FC1 (m) are accepted. A bad frame (wrong encoding,
 // size mismatch, unusable camera_info, no valid depth, stamp going backwards)
-// is dropped with a throttled error that names the problem.
+// is dropped with a throttled error that names the problem. Stamps that go
+// back to a bag's start (a looped or restarted bag, or /clock going back)
+// start a new sequence.
 
 #include <image_transport/image_transport.h>
 #include <image_transport/subscriber_filter.h>
 #include <message_filters/subscriber.h>
 #include <message_filters/sync_policies/approximate_time.h>
 #include <message_filters/synchronizer.h>
-#include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
-#include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
 
 #include "brick_pose/common/errors.h"
 #include "brick_pose/frame/frame_builder.h"
 #include "brick_pose/frame/stamp_order.h"
-#include "brick_pose/ros/conversions.h"
-#include "brick_pose/ros/pipeline_messages.h"
 #include "brick_pose/ros/camera_topics.h"
+#include "brick_pose/ros/conversions.h"
+#include "brick_pose/ros/stage_nodelet.h"
 
 namespace brick_pose
 {
@@ -49,23 +54,23 @@ void checkBuffer(const sensor_msgs::Image& image, const char* which)
 }
 }  // namespace
 
-class RgbdIngestionNodelet : public nodelet::Nodelet
+class RgbdIngestionNodelet : public StageNodelet
 {
   using SyncPolicy = message_filters::sync_policies::ApproximateTime<sensor_msgs::Image, sensor_msgs::Image,
                                                                      sensor_msgs::CameraInfo>;
 
-private:
-  void onInit() override
-  {
-    ros::NodeHandle& node = getNodeHandle();
-    ros::NodeHandle& private_node = getPrivateNodeHandle();
-    std::string camera_ns;
-    int queue_size = 5;
-    private_node.param<std::string>("camera_ns", camera_ns, "/camera");
-    private_node.param("queue_size", queue_size, 5);
-    queue_size = std::max(queue_size, 1);
+public:
+  RgbdIngestionNodelet() : StageNodelet("ingestion") {}
 
-    ros::NodeHandle camera_node(camera_ns);
+private:
+  void initStage(const ParamLookup& lookup) override
+  {
+    // The camera's namespace (realsense2_camera's "camera"); a child of the
+    // stage's node handle, so the stage's remappings apply to its topics.
+    const std::string camera_ns = lookup("camera_ns").value_or("/camera");
+    up_frame_ = lookup("up_frame").value_or("");
+    const int queue_size = std::max(stageParams().queue_size, 5);  // the synchroniser needs some slack
+    ros::NodeHandle camera_node(node(), camera_ns);
     camera_transport_ = std::make_unique<image_transport::ImageTransport>(camera_node);
     color_subscriber_.subscribe(*camera_transport_, CameraTopics::kColorImage, queue_size);
     depth_subscriber_.subscribe(*camera_transport_, CameraTopics::kDepthImage, queue_size);
@@ -73,10 +78,17 @@ private:
     synchronizer_ = std::make_unique<message_filters::Synchronizer<SyncPolicy>>(
         SyncPolicy(queue_size), color_subscriber_, depth_subscriber_, info_subscriber_);
     synchronizer_->registerCallback(&RgbdIngestionNodelet::onFrame, this);
-    frame_publisher_ = node.advertise<FrameMessage>("frame", 2);
+    frame_publisher_ = node().advertise<FrameMessage>("frame", stageParams().queue_size);
+    if (!up_frame_.empty())
+    {
+      tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
+      tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_);
+    }
     watchInputs(camera_node);
-    NODELET_INFO("ingesting %s/{%s, %s, %s}", camera_node.getNamespace().c_str(), CameraTopics::kColorImage,
-                 CameraTopics::kDepthImage, CameraTopics::kColorInfo);
+    NODELET_INFO("ingesting %s/{%s, %s, %s}%s", camera_node.getNamespace().c_str(), CameraTopics::kColorImage,
+                 CameraTopics::kDepthImage, CameraTopics::kColorInfo,
+                 up_frame_.empty() ? "; no up_frame: up is inferred from the scene"
+                                   : ("; up is +z of " + up_frame_).c_str());
   }
 
   /// The synchroniser is silent when one input is missing; these light
@@ -117,12 +129,14 @@ private:
                const sensor_msgs::CameraInfoConstPtr& info)
   {
     const ros::WallTime arrival = ros::WallTime::now();
+    frameIn();
     try
     {
       publish(buildFrame(*color, *depth, *info), arrival);
     }
     catch (const InputError& e)
     {
+      frameDropped(rejection_category_);
       NODELET_ERROR_THROTTLE(2.0, "dropping frame %u.%09u: %s", color->header.stamp.sec, color->header.stamp.nsec,
                              e.what());
     }
@@ -131,6 +145,7 @@ private:
   boost::shared_ptr<FrameMessage> buildFrame(const sensor_msgs::Image& color, const sensor_msgs::Image& depth,
                                              const sensor_msgs::CameraInfo& info)
   {
+    rejection_category_ = "invalid input";
     checkBuffer(color, "colour");
     checkBuffer(depth, "depth");
     auto message = boost::make_shared<FrameMessage>();
@@ -138,32 +153,68 @@ private:
     FrameHeader header;
     header.stamp_ns = static_cast<std::int64_t>(color.header.stamp.toNSec());
     header.frame_id = color.header.frame_id;
-    message->frame =
-        makeRgbdFrame(viewOf(color), viewOf(depth), ros_conversions::fromCameraInfo(info), header);
-    switch (stamp_order_.admit(header.stamp_ns))
+    message->frame = makeRgbdFrame(viewOf(color), viewOf(depth), ros_conversions::fromCameraInfo(info), header);
+    admitStamp(color.header.stamp);
+    message->frame.up_in_camera = upInCamera(color.header);
+    return message;
+  }
+
+  void admitStamp(const ros::Time& stamp)
+  {
+    // rosbag play --clock restarts /clock with every loop of the bag.
+    const ros::Time now = ros::Time::now();
+    const bool clock_went_back = !last_clock_.isZero() && now < last_clock_;
+    last_clock_ = now;
+    switch (stamp_order_.admit(static_cast<std::int64_t>(stamp.toNSec()), clock_went_back))
     {
       case StampOrder::Verdict::kOutOfOrder:
-        throw InputError("stamp " + std::to_string(color.header.stamp.toSec()) + " is not after the previous frame's " +
+        rejection_category_ = "late or duplicated";
+        throw InputError("stamp " + std::to_string(stamp.toSec()) + " is not after the previous frame's " +
                          std::to_string(stamp_order_.lastStampNs() * 1e-9) + " (late or duplicated frame)");
       case StampOrder::Verdict::kRestarted:
-        NODELET_WARN("time jumped back to %.3f: a restarted or looped bag? starting over", color.header.stamp.toSec());
+        NODELET_INFO("time went back to %.3f: a looped or restarted bag; starting a new sequence", stamp.toSec());
         break;
       case StampOrder::Verdict::kInOrder:
         break;
     }
-    return message;
+  }
+
+  /// +z of up_frame in the camera frame at the frame's stamp (the latest
+  /// transform when none at that stamp); nothing without up_frame or tf.
+  std::optional<Eigen::Vector3d> upInCamera(const std_msgs::Header& header)
+  {
+    if (!tf_buffer_) return std::nullopt;
+    try
+    {
+      const ros::Time stamp = tf_buffer_->canTransform(header.frame_id, up_frame_, header.stamp) ? header.stamp
+                                                                                                : ros::Time(0);
+      const Eigen::Isometry3d camera_T_up = tf2::transformToEigen(tf_buffer_->lookupTransform(header.frame_id, up_frame_, stamp));
+      return camera_T_up.linear().col(2);
+    }
+    catch (const tf2::TransformException& e)
+    {
+      NODELET_WARN_THROTTLE(10.0, "no tf from %s to up_frame %s (%s): up is inferred from the scene",
+                            header.frame_id.c_str(), up_frame_.c_str(), e.what());
+      return std::nullopt;
+    }
   }
 
   void publish(const boost::shared_ptr<FrameMessage>& message, const ros::WallTime& arrival)
   {
     message->arrival = arrival;
+    message->sequence = next_sequence_++;
     last_frame_ = arrival;
-    NODELET_DEBUG("frame %.3f ingested in %.2f ms", message->header.stamp.toSec(),
-                  (ros::WallTime::now() - arrival).toSec() * 1e3);
     frame_publisher_.publish(boost::shared_ptr<const FrameMessage>(message));
+    frameOut(*message, (ros::WallTime::now() - arrival).toSec() * 1e3);
   }
 
   StampOrder stamp_order_;
+  ros::Time last_clock_;
+  std::uint64_t next_sequence_ = 0;
+  const char* rejection_category_ = "invalid input";
+  std::string up_frame_;
+  std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
+  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   std::string camera_ns_;
   std::vector<ros::Subscriber> watch_subscribers_;
   ros::WallTimer watchdog_;

@@ -1,57 +1,45 @@
-// brick_pose/RoiFilter: stage 4 (with the per-segment cloud processing of
-// stage 2). Checks each segment's OBB against the catalogue, fits the
-// least-area quadrilateral, inverse-projects its corners, T1, T2 and centre;
-// publishes the brick candidates on `candidates`, in-process. Dropped
-// segments are logged at debug level with the reason. `debug_image` shows
+// brick_pose/RoiFilter: stage 3. For each segment: cloud processing of its
+// points, the OBB dimension check against the catalogue, the least-area
+// quadrilateral, and its corners, T1, T2 and centre inverse-projected onto
+// the fitted plane; publishes the brick candidates on `candidates`,
+// in-process. What it drops is counted by reason in its summary line and
+// /diagnostics, and listed one by one at debug level. `debug_image` shows
 // the quads, T1/T2 and the dropped segments, and `debug_cloud` the accepted
 // segments' points; both are made only when someone subscribes.
 
-#include <nodelet/nodelet.h>
+#include <cv_bridge/cv_bridge.h>
 #include <pcl_conversions/pcl_conversions.h>
-#include <sensor_msgs/PointCloud2.h>
 #include <pluginlib/class_list_macros.hpp>
-#include <ros/ros.h>
+#include <sensor_msgs/PointCloud2.h>
 
 #include "brick_pose/common/errors.h"
 #include "brick_pose/pipeline/pipeline_config.h"
-#include "brick_pose/roi/candidate_overlay.h"
-#include "brick_pose/ros/conversions.h"
-#include "brick_pose/ros/param_lookup.h"
-#include "brick_pose/ros/pipeline_messages.h"
+#include "brick_pose/pipeline/candidate_overlay.h"
+#include "brick_pose/ros/stage_nodelet.h"
 
 namespace brick_pose
 {
-class RoiFilterNodelet : public nodelet::Nodelet
+class RoiFilterNodelet : public StageNodelet
 {
+public:
+  RoiFilterNodelet() : StageNodelet("roi_filter", "segments", "candidates") {}
+
 private:
-  void onInit() override
+  void initStage(const ParamLookup& lookup) override
   {
-    ros::NodeHandle& node = getNodeHandle();
-    const ParamLookup lookup = rosParamLookup(getPrivateNodeHandle(), node);
-    try
-    {
-      front_end_ = std::make_unique<FrontEnd>(catalogueFrom(lookup), frontEndParamsFrom(lookup));
-    }
-    catch (const ConfigError& e)
-    {
-      NODELET_ERROR("ROI filter not started: %s", e.what());
-      return;
-    }
-    node.param("max_latency_ms", max_latency_ms_, 3000.0);
-    candidates_publisher_ = node.advertise<CandidatesMessage>("candidates", 2);
-    debug_image_publisher_ = node.advertise<sensor_msgs::Image>("debug_image", 1);
-    debug_cloud_publisher_ = node.advertise<sensor_msgs::PointCloud2>("debug_cloud", 1);
-    segments_subscriber_ = node.subscribe("segments", 2, &RoiFilterNodelet::onSegments, this);
+    front_end_ = std::make_unique<FrontEnd>(catalogueFrom(lookup), frontEndParamsFrom(lookup));
+    const int queue_size = stageParams().queue_size;
+    candidates_publisher_ = node().advertise<CandidatesMessage>("candidates", queue_size);
+    debug_image_publisher_ = node().advertise<sensor_msgs::Image>("debug_image", 1);
+    debug_cloud_publisher_ = node().advertise<sensor_msgs::PointCloud2>("debug_cloud", 1);
+    segments_subscriber_ = node().subscribe("segments", queue_size, &RoiFilterNodelet::onSegments, this);
   }
 
   void onSegments(const SegmentsMessageConstPtr& segments)
   {
-    if (frameAgeMs(*segments->frame) > max_latency_ms_)
-    {
-      NODELET_WARN_THROTTLE(2.0, "dropping frame %.3f: %.0f ms old before ROI filtration, over the %.0f ms latency budget",
-                            segments->header.stamp.toSec(), frameAgeMs(*segments->frame), max_latency_ms_);
-      return;
-    }
+    frameIn();
+    const FrameMessage& frame = *segments->frame;
+    if (!withinLatencyBudget(frame)) return;
     const ros::WallTime start = ros::WallTime::now();
     auto message = boost::make_shared<CandidatesMessage>();
     message->header = segments->header;
@@ -60,29 +48,42 @@ private:
     message->front_end.timings.segmentation_ms = segments->segmentation_ms;
     try
     {
-      front_end_->filterSegments(segments->frame->frame, segments->segments, message->front_end);
+      front_end_->filterSegments(frame.frame, segments->segments, message->front_end);
     }
     catch (const InputError& e)
     {
-      NODELET_ERROR_THROTTLE(2.0, "dropping frame %.3f: ROI filtration failed: %s", segments->header.stamp.toSec(),
-                             e.what());
+      frameDropped("ROI filtration failed");
+      NODELET_ERROR_THROTTLE(2.0, "dropping %s: ROI filtration failed: %s", frameLabel(frame).c_str(), e.what());
       return;
     }
     const double roi_ms = (ros::WallTime::now() - start).toSec() * 1e3;
     message->front_end.timings.total_ms = segments->segmentation_ms + roi_ms;
-    for (const Rejection& rejection : message->front_end.rejections)
-      NODELET_DEBUG("frame %.3f: dropped %s segment of %d px at (%d, %d): %s", segments->header.stamp.toSec(),
-                    rejection.type_name.empty() ? "colour-free" : rejection.type_name.c_str(), rejection.area_px,
-                    rejection.bounding_box_px.x, rejection.bounding_box_px.y, rejection.reason.c_str());
-    NODELET_DEBUG("frame %.3f: %zu candidates, %zu rejected, front end %.1f ms", segments->header.stamp.toSec(),
-                  message->front_end.candidates.size(), message->front_end.rejections.size(),
-                  message->front_end.timings.total_ms);
+    account(frame, *message);
     candidates_publisher_.publish(CandidatesMessageConstPtr(message));
+    frameOut(frame, roi_ms);
     if (debug_cloud_publisher_.getNumSubscribers() > 0) publishDebugCloud(*message);
     // Drawing costs a frame copy: only for someone watching.
     if (debug_image_publisher_.getNumSubscribers() > 0)
-      debug_image_publisher_.publish(ros_conversions::toImageMessage(
-          drawCandidateOverlay(segments->frame->frame.rgb, message->front_end), "rgb8", segments->header));
+      debug_image_publisher_.publish(
+          cv_bridge::CvImage(segments->header, "rgb8", drawCandidateOverlay(frame.frame.rgb, message->front_end))
+              .toImageMsg());
+  }
+
+  /// Counts for the summary line; each rejection, with its own size and
+  /// place, at debug level.
+  void account(const FrameMessage& frame, const CandidatesMessage& message)
+  {
+    const FrontEndResult& result = message.front_end;
+    itemsProcessed(static_cast<int>(result.candidates.size() + result.rejections.size()),
+                   static_cast<int>(result.candidates.size()));
+    for (const Rejection& rejection : result.rejections)
+    {
+      itemDropped(rejection.category);
+      NODELET_DEBUG("%s: dropped %s segment of %d px at (%d, %d) %dx%d: %s", frameLabel(frame).c_str(),
+                    rejection.type_name.empty() ? "colour-free" : rejection.type_name.c_str(), rejection.area_px,
+                    rejection.bounding_box_px.x, rejection.bounding_box_px.y, rejection.bounding_box_px.width,
+                    rejection.bounding_box_px.height, rejection.reason.c_str());
+    }
   }
 
   /// The accepted segments' points, one cloud for rviz.
@@ -98,7 +99,6 @@ private:
   }
 
   std::unique_ptr<FrontEnd> front_end_;
-  double max_latency_ms_ = 3000.0;
   ros::Subscriber segments_subscriber_;
   ros::Publisher candidates_publisher_;
   ros::Publisher debug_image_publisher_;

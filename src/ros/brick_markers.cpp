@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include <Eigen/Geometry>
+
 #include "brick_pose/geometry/cuboid.h"
 
 namespace brick_pose

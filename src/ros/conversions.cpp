@@ -44,55 +44,5 @@ PinholeCamera fromCameraInfo(const sensor_msgs::CameraInfo& info)
   return camera;
 }
 
-sensor_msgs::ImagePtr toImageMessage(const cv::Mat& image, const std::string& encoding,
-                                     const std_msgs::Header& header)
-{
-  auto message = boost::make_shared<sensor_msgs::Image>();
-  message->header = header;
-  message->encoding = encoding;
-  message->height = static_cast<std::uint32_t>(image.rows);
-  message->width = static_cast<std::uint32_t>(image.cols);
-  message->is_bigendian = 0;
-  message->step = static_cast<std::uint32_t>(image.cols * image.elemSize());
-  message->data.resize(static_cast<std::size_t>(message->step) * image.rows);
-  for (int row = 0; row < image.rows; ++row)
-    std::memcpy(&message->data[static_cast<std::size_t>(row) * message->step], image.ptr(row), message->step);
-  return message;
-}
-
-geometry_msgs::Pose toPose(const Eigen::Isometry3d& pose)
-{
-  geometry_msgs::Pose message;
-  const Eigen::Quaterniond rotation(pose.linear());
-  message.position.x = pose.translation().x();
-  message.position.y = pose.translation().y();
-  message.position.z = pose.translation().z();
-  message.orientation.x = rotation.x();
-  message.orientation.y = rotation.y();
-  message.orientation.z = rotation.z();
-  message.orientation.w = rotation.w();
-  return message;
-}
-
-geometry_msgs::Transform toTransform(const Eigen::Isometry3d& pose)
-{
-  const geometry_msgs::Pose as_pose = toPose(pose);
-  geometry_msgs::Transform message;
-  message.translation.x = as_pose.position.x;
-  message.translation.y = as_pose.position.y;
-  message.translation.z = as_pose.position.z;
-  message.rotation = as_pose.orientation;
-  return message;
-}
-
-Eigen::Isometry3d fromPose(const geometry_msgs::Pose& pose)
-{
-  Eigen::Isometry3d result = Eigen::Isometry3d::Identity();
-  result.linear() = Eigen::Quaterniond(pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z)
-                        .normalized()
-                        .toRotationMatrix();
-  result.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
-  return result;
-}
 }  // namespace ros_conversions
 }  // namespace brick_pose

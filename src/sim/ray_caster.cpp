@@ -79,6 +79,7 @@ RayHit RayCaster::castBrick(int brick_index, const Eigen::Vector3d& origin, cons
   Eigen::Vector3d normal_brick = Eigen::Vector3d::Zero();
   normal_brick[near_axis] = near_positive ? 1.0 : -1.0;
   hit.normal = box.brick_R_camera.transpose() * normal_brick;
+  hit.point_brick = o + t_near * d;
   return hit;
 }
 

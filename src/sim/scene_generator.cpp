@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "brick_pose/common/errors.h"
+#include "brick_pose/sim/box_layouts.h"
 #include "brick_pose/sim/fast_random.h"
 
 namespace brick_pose
@@ -22,15 +23,6 @@ Eigen::Isometry3d brickPose(const Eigen::Vector3d& top_centre_world, double yaw_
                       .toRotationMatrix();
   pose.translation() = top_centre_world;
   return pose;
-}
-
-/// Lifts a (possibly tilted) brick so that its lowest corner rests at `floor_z`.
-void restOn(PlacedBrick& brick, double floor_z)
-{
-  double lowest = std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector3d& corner : cuboidCornersInBrick(brick.type))
-    lowest = std::min(lowest, (brick.world_T_brick * corner).z());
-  brick.world_T_brick.translation().z() += floor_z - lowest;
 }
 
 /// Highest top surface among `placed` under the footprint of `brick`, sampled
@@ -73,16 +65,81 @@ public:
       case SceneKind::kUnorganisedPile:
         scene.bricks = unorganisedPile();
         break;
+      case SceneKind::kTouchingRows:
+      case SceneKind::kPalletLayer:
+      case SceneKind::kPalletStack:
+      case SceneKind::kTableBoxes:
+        return buildBoxLayout();
       case SceneKind::kSingle:
       default:
         scene.bricks = {singleBrick()};
         break;
     }
     scene.world_T_camera = cameraLookingAt(scene.bricks);
+    scene.edge_radius_m = params_.edge_radius_m;
     return scene;
   }
 
 private:
+  Scene buildBoxLayout()
+  {
+    LayoutContext context{typesToDraw(), params_, random_};
+    Scene scene;
+    switch (params_.kind)
+    {
+      case SceneKind::kTouchingRows:
+        scene.bricks = touchingRows(context);
+        break;
+      case SceneKind::kPalletLayer:
+        scene.bricks = palletLayer(context);
+        break;
+      case SceneKind::kPalletStack:
+        scene.bricks = palletStack(context);
+        break;
+      case SceneKind::kTableBoxes:
+      default:
+        scene.bricks = tableBoxes(context);
+        scene.ground_rgb = {{196, 170, 134}};  // a light wooden table top
+        break;
+    }
+    // A pallet whose every box went missing still shows one box.
+    if (scene.bricks.empty()) scene.bricks = {singleBrick()};
+    scene.world_T_camera = cameraLookingAtBodies(scene.bricks);
+    scene.edge_radius_m = params_.edge_radius_m;
+    return scene;
+  }
+
+  std::vector<const BrickType*> typesToDraw() const
+  {
+    std::vector<const BrickType*> types;
+    if (params_.types.empty())
+      for (const BrickType& type : catalogue_.types())
+        types.push_back(&type);
+    else
+      for (const std::string& name : params_.types)
+        types.push_back(&catalogue_.at(name));
+    return types;
+  }
+
+  /// Looks at the middle of the bodies' footprint, at the height of the
+  /// highest corner: upright boxes' frames sit on their sides, so the brick
+  /// origins would pull the view off centre.
+  Eigen::Isometry3d cameraLookingAtBodies(const std::vector<PlacedBrick>& bricks)
+  {
+    Eigen::Vector3d target = Eigen::Vector3d::Zero();
+    double top_z = 0.0;
+    for (const PlacedBrick& brick : bricks)
+    {
+      target += brick.world_T_brick * Eigen::Vector3d(0.0, 0.0, -0.5 * brick.type.height_m);
+      for (const Eigen::Vector3d& corner : cuboidCornersInBrick(brick.type))
+        top_z = std::max(top_z, (brick.world_T_brick * corner).z());
+    }
+    target /= static_cast<double>(bricks.size());
+    target.z() = top_z;
+    return lookAt(target, random_.uniform(params_.min_distance_m, params_.max_distance_m),
+                  random_.uniform(params_.min_elevation_deg, params_.max_elevation_deg), random_.uniform(-180.0, 180.0));
+  }
+
   const BrickType& randomType()
   {
     if (params_.types.empty())
@@ -102,7 +159,7 @@ private:
     const double tilt_rad = random_.uniform(0.0, params_.max_tilt_deg) * kDegToRad;
     brick.world_T_brick =
         brickPose(Eigen::Vector3d::Zero(), random_.uniform(-M_PI, M_PI), randomHorizontalAxis(), tilt_rad);
-    restOn(brick, 0.0);
+    restBrickOn(brick, 0.0);
     return brick;
   }
 
@@ -143,7 +200,7 @@ private:
       // A brick resting on others lies a little tilted; one on the ground lies flat.
       const double tilt_rad = support > 0.0 ? random_.uniform(0.0, params_.max_tilt_deg) * kDegToRad : 0.0;
       brick.world_T_brick = brickPose(drop, yaw_rad, randomHorizontalAxis(), tilt_rad);
-      restOn(brick, supportHeight(brick, bricks));
+      restBrickOn(brick, supportHeight(brick, bricks));
       bricks.push_back(brick);
     }
     return bricks;
@@ -170,26 +227,114 @@ private:
 };
 }  // namespace
 
+namespace
+{
+const std::vector<std::pair<SceneKind, std::string>>& kindNames()
+{
+  static const std::vector<std::pair<SceneKind, std::string>> names = {
+      {SceneKind::kSingle, "single"},
+      {SceneKind::kOrganisedPile, "organised_pile"},
+      {SceneKind::kUnorganisedPile, "unorganised_pile"},
+      {SceneKind::kTouchingRows, "touching_rows"},
+      {SceneKind::kPalletLayer, "pallet_layer"},
+      {SceneKind::kPalletStack, "pallet_stack"},
+      {SceneKind::kTableBoxes, "table_boxes"},
+  };
+  return names;
+}
+/// Cardboard, tape and labels for every brick whose type has no plate
+/// colour. From a random source of their own, so that the layouts (and the
+/// scenes of earlier versions) do not change with them.
+void addMarkings(Scene& scene, std::uint64_t seed, SceneKind kind)
+{
+  FastRandom random(seed ^ 0x6D61726B696E6773ULL);
+  for (PlacedBrick& brick : scene.bricks)
+  {
+    if (brick.type.hasPlateColour()) continue;
+    SurfaceMarkings& markings = brick.markings;
+    markings.cardboard = true;
+    // Boxes on a table are mostly printed packaging, as in the mOSD scenes.
+    if (kind == SceneKind::kTableBoxes) markings.printed = random.bernoulli(0.7);
+    const double tape = random.uniform();
+    markings.tape = tape < 0.55 ? SurfaceMarkings::Tape::kBrown
+                                : tape < 0.8 ? SurfaceMarkings::Tape::kClear : SurfaceMarkings::Tape::kNone;
+    markings.labels = static_cast<int>(random.next() % 3);
+    markings.seed = random.next();
+  }
+}
+}  // namespace
+
 SceneKind sceneKindFromString(const std::string& name)
 {
-  if (name == "single") return SceneKind::kSingle;
-  if (name == "organised_pile") return SceneKind::kOrganisedPile;
-  if (name == "unorganised_pile") return SceneKind::kUnorganisedPile;
-  throw ConfigError("scene kind: unknown '" + name + "' (expected single, organised_pile or unorganised_pile)");
+  std::string known;
+  for (const auto& [kind, kind_name] : kindNames())
+  {
+    if (kind_name == name) return kind;
+    known += (known.empty() ? "" : ", ") + kind_name;
+  }
+  throw ConfigError("parameter 'scene': unknown scene kind '" + name + "' (expected " + known + ")");
 }
 
 std::string toString(SceneKind kind)
 {
+  for (const auto& [known_kind, name] : kindNames())
+    if (known_kind == kind) return name;
+  return "single";
+}
+
+void SceneParams::applyView(const std::string& view)
+{
+  if (view == "top")
+  {
+    min_elevation_deg = 65.0;
+    max_elevation_deg = 89.0;
+  }
+  else if (view == "oblique")
+  {
+    // 30-70 degrees from the vertical: side faces are large.
+    min_elevation_deg = 20.0;
+    max_elevation_deg = 60.0;
+  }
+  else
+    throw ConfigError("parameter 'view': unknown view '" + view + "' (expected top or oblique)");
+}
+
+SceneParams SceneParams::defaultsFor(SceneKind kind)
+{
+  SceneParams params;
+  params.kind = kind;
+  const bool box_kind = kind == SceneKind::kTouchingRows || kind == SceneKind::kPalletLayer ||
+                        kind == SceneKind::kPalletStack || kind == SceneKind::kTableBoxes;
+  // Cardboard boxes have edges rounded over a few millimetres.
+  if (box_kind) params.edge_radius_m = 0.004;
   switch (kind)
   {
-    case SceneKind::kOrganisedPile:
-      return "organised_pile";
-    case SceneKind::kUnorganisedPile:
-      return "unorganised_pile";
-    case SceneKind::kSingle:
+    case SceneKind::kTouchingRows:
+      params.min_distance_m = 1.0;
+      params.max_distance_m = 2.0;
+      params.max_rows = 4;
+      params.max_layers = 1;
+      break;
+    case SceneKind::kPalletLayer:
+    case SceneKind::kPalletStack:
+      // A camera above a pallet, as in the pallet recordings (~1.2-2 m).
+      params.min_distance_m = 1.2;
+      params.max_distance_m = 2.0;
+      params.min_elevation_deg = 65.0;
+      params.max_elevation_deg = 89.0;
+      params.max_layers = 3;
+      break;
+    case SceneKind::kTableBoxes:
+      // 30-70 degrees from the vertical: side faces are large.
+      params.min_distance_m = 0.6;
+      params.max_distance_m = 1.5;
+      params.min_elevation_deg = 20.0;
+      params.max_elevation_deg = 60.0;
+      break;
     default:
-      return "single";
+      break;
   }
+  return params;
 }
 
 void SceneParams::validate(const BrickCatalogue& catalogue) const
@@ -207,6 +352,19 @@ void SceneParams::validate(const BrickCatalogue& catalogue) const
   check(max_tilt_deg >= 0.0 && max_tilt_deg < 60.0, "max_tilt_deg must be in [0, 60)");
   check(max_pile_bricks >= 2, "max_pile_bricks must be >= 2");
   check(max_rows >= 1 && max_layers >= 1, "max_rows and max_layers must be >= 1");
+  check(max_gap_m >= 0.0 && max_gap_m <= 0.05, "parameter 'max_gap_m' must be in [0, 0.05]");
+  check(zero_gap_probability >= 0.0 && zero_gap_probability <= 1.0,
+        "parameter 'zero_gap_probability' must be in [0, 1]");
+  check(max_row_length_m > 0.0, "parameter 'max_row_length_m' must be > 0");
+  check(pallet_length_m > 0.0 && pallet_length_m <= 5.0, "parameter 'pallet_length_m' must be in (0, 5]");
+  check(pallet_width_m > 0.0 && pallet_width_m <= 5.0, "parameter 'pallet_width_m' must be in (0, 5]");
+  check(missing_box_probability >= 0.0 && missing_box_probability < 1.0,
+        "parameter 'missing_box_probability' must be in [0, 1)");
+  check(layer_offset_m >= 0.0 && layer_offset_m <= 0.5, "parameter 'layer_offset_m' must be in [0, 0.5]");
+  check(max_table_boxes >= 1 && max_table_boxes <= 20, "parameter 'max_table_boxes' must be in [1, 20]");
+  check(upright_probability >= 0.0 && upright_probability <= 1.0, "parameter 'upright_probability' must be in [0, 1]");
+  check(stack_probability >= 0.0 && stack_probability <= 1.0, "parameter 'stack_probability' must be in [0, 1]");
+  check(edge_radius_m >= 0.0 && edge_radius_m <= 0.02, "parameter 'edge_radius_m' must be in [0, 0.02]");
 }
 
 SceneGenerator::SceneGenerator(BrickCatalogue catalogue, SceneParams params)
@@ -217,7 +375,9 @@ SceneGenerator::SceneGenerator(BrickCatalogue catalogue, SceneParams params)
 
 Scene SceneGenerator::generate(std::uint64_t seed) const
 {
-  return Builder(catalogue_, params_, seed).build();
+  Scene scene = Builder(catalogue_, params_, seed).build();
+  if (params_.markings) addMarkings(scene, seed, params_.kind);
+  return scene;
 }
 
 Eigen::Isometry3d lookAt(const Eigen::Vector3d& target_world, double distance_m, double elevation_deg,

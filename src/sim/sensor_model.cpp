@@ -1,6 +1,7 @@
 #include "brick_pose/sim/sensor_model.h"
 
 #include <cmath>
+#include <cstdlib>
 
 #include "brick_pose/common/errors.h"
 
@@ -30,6 +31,39 @@ std::string toString(Lighting lighting)
   }
 }
 
+DepthModel depthModelFromString(const std::string& name)
+{
+  if (name == "ideal") return DepthModel::kIdeal;
+  if (name == "d4xx") return DepthModel::kD4xx;
+  throw ConfigError("parameter 'depth_model': unknown model '" + name + "' (expected ideal or d4xx)");
+}
+
+std::string toString(DepthModel model) { return model == DepthModel::kD4xx ? "d4xx" : "ideal"; }
+
+SensorModel SensorModel::d4xx()
+{
+  SensorModel sensor;
+  // The D4xx census window is 7x7 at the depth imager's resolution; its
+  // foreground fattening is a few pixels; its subpixel disparity comes in
+  // 1/32 px steps (Intel's subpixel linearity white paper); aligned depth
+  // is commonly 1-2 px off the colour image.
+  sensor.stereo_window_px = 7;
+  sensor.edge_fattening_px = 3;
+  sensor.disparity_step_px = 1.0 / 32.0;
+  sensor.depth_offset_u_px = 2;
+  sensor.depth_offset_v_px = 1;
+  return sensor;
+}
+
+double SensorModel::quantisedDepth(double depth_m, double fx_px) const
+{
+  if (disparity_step_px <= 0.0 || !(depth_m > 0.0)) return depth_m;
+  const double focal_baseline = fx_px * baseline_m;
+  const double steps = std::round(focal_baseline / depth_m / disparity_step_px);
+  // A disparity that rounds to zero is infinitely far: no depth.
+  return steps > 0.0 ? focal_baseline / (steps * disparity_step_px) : 0.0;
+}
+
 void SensorModel::validate() const
 {
   auto check = [](bool ok, const std::string& message) {
@@ -46,6 +80,12 @@ void SensorModel::validate() const
   check(grazing_cos >= 0.0 && grazing_cos < 1.0, "grazing_cos must be in [0, 1)");
   check(depth_edge_threshold_m > 0.0, "depth_edge_threshold_m must be > 0");
   check(colour_noise_sigma >= 0.0, "colour_noise_sigma must be >= 0");
+  check(stereo_window_px >= 1 && stereo_window_px <= 31 && stereo_window_px % 2 == 1,
+        "parameter 'stereo_window_px' must be odd, in 1..31");
+  check(edge_fattening_px >= 0 && edge_fattening_px <= 15, "parameter 'edge_fattening_px' must be in 0..15");
+  check(disparity_step_px >= 0.0 && disparity_step_px <= 1.0, "parameter 'disparity_step_px' must be in [0, 1]");
+  check(std::abs(depth_offset_u_px) <= 16, "parameter 'depth_offset_u_px' must be in -16..16");
+  check(std::abs(depth_offset_v_px) <= 16, "parameter 'depth_offset_v_px' must be in -16..16");
 }
 }  // namespace sim
 }  // namespace brick_pose

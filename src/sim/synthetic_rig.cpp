@@ -3,9 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
+#include "brick_pose/sim/box_print.h"
 #include "brick_pose/sim/fast_random.h"
 #include "brick_pose/sim/ray_caster.h"
+#include "brick_pose/sim/stereo_matching.h"
+#include "brick_pose/sim/top_face_visibility.h"
+#include "brick_pose/sim/touching.h"
 
 namespace brick_pose
 {
@@ -23,6 +28,7 @@ struct GeometryBuffers
   cv::Mat face;            // CV_8UC1
   cv::Mat normal_dot_ray;  // CV_32FC1, |cos| between the normal and the viewing ray
   cv::Mat lambert;         // CV_32FC1, max(0, n . light)
+  cv::Mat rounding;        // CV_32FC1, 0..1: how far into a rounded top edge (0 = flat)
 };
 
 struct LightingProfile
@@ -73,6 +79,11 @@ public:
     // The sun (or lamp) shines from above and a little behind the camera.
     const Eigen::Vector3d toward_light_world = Eigen::Vector3d(0.3, -0.2, 1.0).normalized();
     toward_light_ = scene.world_T_camera.linear().transpose() * toward_light_world;
+    for (const PlacedBrick& brick : scene.bricks)
+      prints_.push_back(brick.markings.cardboard ? std::optional<BoxPrint>(BoxPrint(brick.type, brick.markings))
+                                                 : std::nullopt);
+    for (const Eigen::Isometry3d& camera_T_brick : caster_.cameraTBricks())
+      brick_T_camera_.push_back(camera_T_brick.inverse());
   }
 
   SyntheticFrame render()
@@ -96,7 +107,7 @@ private:
     GeometryBuffers buffers{cv::Mat(height, width, CV_32FC1, cv::Scalar(kNoDepth)),
                             cv::Mat(height, width, CV_32SC1, cv::Scalar(RayHit::kNothing)),
                             cv::Mat(height, width, CV_8UC1, cv::Scalar(0)), cv::Mat(height, width, CV_32FC1, cv::Scalar(0)),
-                            cv::Mat(height, width, CV_32FC1, cv::Scalar(0))};
+                            cv::Mat(height, width, CV_32FC1, cv::Scalar(0)), cv::Mat(height, width, CV_32FC1, cv::Scalar(0))};
     const Eigen::Vector3d origin = Eigen::Vector3d::Zero();
     for (int v = 0; v < height; ++v)
       for (int u = 0; u < width; ++u)
@@ -120,7 +131,12 @@ private:
   {
     if (!hit.hitSomething()) return;
     const Eigen::Vector3d ray = camera_.ray(u, v);
-    buffers.depth_m.at<float>(v, u) = static_cast<float>(hit.ray_t);
+    const double rounding = roundingOf(hit);
+    double depth = hit.ray_t;
+    // Along the ray (z = 1) the rounding's dip below the face is sink / |n . ray|.
+    if (rounding > 0.0) depth += roundingSink(rounding) / std::max(0.05, std::abs(hit.normal.dot(ray)));
+    buffers.rounding.at<float>(v, u) = static_cast<float>(rounding);
+    buffers.depth_m.at<float>(v, u) = static_cast<float>(depth);
     buffers.brick_index.at<int>(v, u) = hit.brick_index;
     buffers.face.at<unsigned char>(v, u) = static_cast<unsigned char>(hit.face);
     buffers.normal_dot_ray.at<float>(v, u) = static_cast<float>(std::abs(hit.normal.dot(ray.normalized())));
@@ -139,15 +155,46 @@ private:
     return labels;
   }
 
+  /// 0 on the flat of a face, rising to 1 at a top edge within
+  /// Scene::edge_radius_m of it: (r - d) / r at distance d from the nearest edge.
+  double roundingOf(const RayHit& hit) const
+  {
+    if (scene_.edge_radius_m <= 0.0 || !hit.hitBrick() || hit.face != CuboidFace::kTop) return 0.0;
+    const BrickType& type = scene_.bricks[hit.brick_index].type;
+    const double to_edge = std::min(0.5 * type.length_m - std::abs(hit.point_brick.x()),
+                                    0.5 * type.width_m - std::abs(hit.point_brick.y()));
+    return std::clamp(1.0 - to_edge / scene_.edge_radius_m, 0.0, 1.0);
+  }
+
+  /// How far a rounded edge lies below its face's plane: r - sqrt(r^2 - (r - d)^2)
+  /// at distance d from the edge, with rounding = (r - d) / r.
+  double roundingSink(double rounding) const
+  {
+    const double radius = scene_.edge_radius_m;
+    return radius - std::sqrt(std::max(0.0, radius * radius * (1.0 - rounding * rounding)));
+  }
+
+  /// A rounded edge turns away from the light and shadows its neighbour's:
+  /// it darkens toward the edge, to half at the edge itself.
+  static double roundingShade(double rounding) { return 1.0 - 0.5 * rounding * rounding; }
+
   /// Noise-free colour of what a ray hit, in 0..255 per channel (may exceed 255).
-  Eigen::Vector3d radiance(const RayHit& hit, const Eigen::Vector3d& ray) const
+  /// `footprint_m`: the size on the surface of what the sample stands for.
+  Eigen::Vector3d radiance(const RayHit& hit, const Eigen::Vector3d& ray, double footprint_m) const
   {
     if (!hit.hitSomething()) return Eigen::Vector3d::Zero();
     const double lambert = std::max(0.0, hit.normal.dot(toward_light_));
-    return albedo(hit, ray) * (profile_.ambient + profile_.diffuse * lambert);
+    return albedo(hit, ray, footprint_m) * (profile_.ambient + profile_.diffuse * lambert) *
+           roundingShade(roundingOf(hit));
   }
 
-  Eigen::Vector3d albedo(const RayHit& hit, const Eigen::Vector3d& ray) const
+  /// Size of one pixel (times `fraction`) on a surface at `depth_m` seen at |cos| `normal_dot_ray`.
+  double footprintOf(double depth_m, double normal_dot_ray, double fraction = 1.0) const
+  {
+    return fraction * depth_m / camera_.fx_px / std::max(0.3, normal_dot_ray);
+  }
+
+  Eigen::Vector3d albedo(const RayHit& hit, const Eigen::Vector3d& ray, double footprint_m) const
   {
     if (hit.brick_index == RayHit::kGround)
     {
@@ -157,7 +204,9 @@ private:
     }
     const BrickType& type = scene_.bricks[hit.brick_index].type;
     const auto& rgb = hit.face == CuboidFace::kTop ? type.plate_rgb : type.body_rgb;
-    return Eigen::Vector3d(rgb[0], rgb[1], rgb[2]);
+    const Eigen::Vector3d base(rgb[0], rgb[1], rgb[2]);
+    const std::optional<BoxPrint>& print = prints_[hit.brick_index];
+    return print ? print->colourAt(base, hit.face, hit.point_brick, footprint_m) : base;
   }
 
   /// A pixel whose 4-neighbours see another surface is a mix of surfaces in a
@@ -188,7 +237,9 @@ private:
         for (int i = 0; i < kSamples; ++i)
         {
           const Eigen::Vector3d ray = camera_.ray(u - 0.5 + (i + 0.5) / kSamples, v - 0.5 + (j + 0.5) / kSamples);
-          sum += radiance(caster_.cast(Eigen::Vector3d::Zero(), ray), ray);
+          const RayHit hit = caster_.cast(Eigen::Vector3d::Zero(), ray);
+          const double footprint_m = footprintOf(hit.ray_t, std::abs(hit.normal.dot(ray.normalized())), 1.0 / kSamples);
+          sum += radiance(hit, ray, footprint_m);
         }
       return sum / (kSamples * kSamples);
     }
@@ -198,8 +249,11 @@ private:
     hit.face = static_cast<CuboidFace>(geometry.face.at<unsigned char>(v, u));
     hit.ray_t = geometry.depth_m.at<float>(v, u);
     const Eigen::Vector3d ray = camera_.ray(u, v);
+    if (hit.hitBrick() && prints_[hit.brick_index]) hit.point_brick = brick_T_camera_[hit.brick_index] * (hit.ray_t * ray);
     const double lambert = geometry.lambert.at<float>(v, u);
-    return albedo(hit, ray) * (profile_.ambient + profile_.diffuse * lambert);
+    const double footprint_m = footprintOf(hit.ray_t, geometry.normal_dot_ray.at<float>(v, u));
+    return albedo(hit, ray, footprint_m) * (profile_.ambient + profile_.diffuse * lambert) *
+           roundingShade(geometry.rounding.at<float>(v, u));
   }
 
   cv::Mat shade(const GeometryBuffers& geometry)
@@ -271,40 +325,104 @@ private:
   bool inStereoShadow(const GeometryBuffers& geometry, int u, int v) const
   {
     if (!sensor_.stereo_shadow) return false;
-    const double depth = geometry.depth_m.at<float>(v, u);
+    double depth = geometry.depth_m.at<float>(v, u);
+    // A rounded edge dips below its face's plane, where the neighbour's
+    // corner would hide it; the edge itself is in plain sight: test the plane.
+    const double rounding = geometry.rounding.at<float>(v, u);
+    if (rounding > 0.0)
+      depth -= roundingSink(rounding) /
+               std::max(0.05, geometry.normal_dot_ray.at<float>(v, u) * camera_.ray(u, v).norm());
     const Eigen::Vector3d point = camera_.backProject(u, v, depth);
     // The second imager sits one baseline to the right of the reference one.
     const Eigen::Vector3d right_imager(sensor_.baseline_m, 0.0, 0.0);
     return caster_.blocked(point, right_imager);
   }
 
+  /// Pixels where the stereo window can change the depth: next to another
+  /// surface or on a rounded edge.
+  static cv::Mat surfaceBoundaries(const GeometryBuffers& geometry)
+  {
+    cv::Mat boundaries(geometry.depth_m.size(), CV_8UC1, cv::Scalar(0));
+    for (int v = 0; v < boundaries.rows; ++v)
+      for (int u = 0; u < boundaries.cols; ++u)
+      {
+        const int index = geometry.brick_index.at<int>(v, u);
+        const unsigned char face = geometry.face.at<unsigned char>(v, u);
+        bool boundary = geometry.rounding.at<float>(v, u) > 0.0f;
+        if (u + 1 < boundaries.cols)
+          boundary |= geometry.brick_index.at<int>(v, u + 1) != index || geometry.face.at<unsigned char>(v, u + 1) != face;
+        if (v + 1 < boundaries.rows)
+          boundary |= geometry.brick_index.at<int>(v + 1, u) != index || geometry.face.at<unsigned char>(v + 1, u) != face;
+        if (!boundary) continue;
+        boundaries.at<unsigned char>(v, u) = 255;
+        if (u + 1 < boundaries.cols) boundaries.at<unsigned char>(v, u + 1) = 255;
+        if (v + 1 < boundaries.rows) boundaries.at<unsigned char>(v + 1, u) = 255;
+      }
+    return boundaries;
+  }
+
+  /// The depth the stereo matcher reports before noise (the clean depth when
+  /// the window and fattening are off).
+  cv::Mat matchedDepth(const GeometryBuffers& geometry) const
+  {
+    if (sensor_.stereo_window_px <= 1 && sensor_.edge_fattening_px <= 0) return geometry.depth_m;
+    StereoWindow window;
+    window.window_px = sensor_.stereo_window_px;
+    window.fattening_px = sensor_.edge_fattening_px;
+    window.focal_baseline_px_m = camera_.fx_px * sensor_.baseline_m;
+    return stereoMatchedDepth(geometry.depth_m, surfaceBoundaries(geometry), window);
+  }
+
+  /// Aligned depth `offset` pixels off the colour image; pixels shifted in
+  /// from outside have no depth.
+  cv::Mat misregistered(const cv::Mat& depth_mm) const
+  {
+    const int du = sensor_.depth_offset_u_px, dv = sensor_.depth_offset_v_px;
+    if (du == 0 && dv == 0) return depth_mm;
+    cv::Mat shifted(depth_mm.size(), depth_mm.type(), cv::Scalar(0));
+    const int width = depth_mm.cols - std::abs(du), height = depth_mm.rows - std::abs(dv);
+    if (width <= 0 || height <= 0) return shifted;
+    depth_mm(cv::Rect(std::max(0, -du), std::max(0, -dv), width, height))
+        .copyTo(shifted(cv::Rect(std::max(0, du), std::max(0, dv), width, height)));
+    return shifted;
+  }
+
   cv::Mat measureDepth(const GeometryBuffers& geometry)
   {
     cv::Mat depth_mm(geometry.depth_m.size(), CV_16UC1, cv::Scalar(0));
+    const cv::Mat matched = matchedDepth(geometry);
     const cv::Mat correlated = correlatedNoise(8);
     // Split the axial sigma between a white and a correlated part.
     const double white_share = std::sqrt(0.5), correlated_share = std::sqrt(0.5);
     for (int v = 0; v < depth_mm.rows; ++v)
       for (int u = 0; u < depth_mm.cols; ++u)
       {
-        double depth = geometry.depth_m.at<float>(v, u);
+        double depth = matched.at<float>(v, u);
         if (std::isnan(depth) || depth < sensor_.min_depth_m || depth > sensor_.max_depth_m) continue;
+        // A pixel the window moved by more than its noise (a closed gap, a
+        // fattened edge) shows the surface that won the window: the grazing
+        // and shadow tests of what its ray really hit do not apply to it.
+        const float clean = geometry.depth_m.at<float>(v, u);
+        const bool taken_over =
+            std::isnan(clean) || std::abs(clean - depth) > std::max(0.002, sensor_.axialSigma(clean, camera_.fx_px));
         if (random_.bernoulli(sensor_.dropout_probability)) continue;
-        if (geometry.normal_dot_ray.at<float>(v, u) < sensor_.grazing_cos && random_.bernoulli(0.8)) continue;
+        if (!taken_over && geometry.normal_dot_ray.at<float>(v, u) < sensor_.grazing_cos && random_.bernoulli(0.8))
+          continue;
         if (profile_.bright_dropout_probability > 0.0 && geometry.lambert.at<float>(v, u) > 0.8 &&
             random_.bernoulli(profile_.bright_dropout_probability))
           continue;
-        if (inStereoShadow(geometry, u, v)) continue;
-        const double neighbour = edgeNeighbourDepth(geometry.depth_m, u, v);
+        if (!taken_over && inStereoShadow(geometry, u, v)) continue;
+        const double neighbour = edgeNeighbourDepth(matched, u, v);
         if (!std::isnan(neighbour) && random_.bernoulli(sensor_.flying_pixel_probability))
           depth += random_.uniform(0.1, 0.9) * (neighbour - depth);
         const double sigma = sensor_.axialSigma(depth, camera_.fx_px);
         depth += sigma * (white_share * random_.normal() + correlated_share * correlated.at<float>(v, u));
+        depth = sensor_.quantisedDepth(depth, camera_.fx_px);
         const double millimetres = std::round(depth * 1000.0);
         if (millimetres > 0.0 && millimetres < 65535.0)
           depth_mm.at<unsigned short>(v, u) = static_cast<unsigned short>(millimetres);
       }
-    return depth_mm;
+    return misregistered(depth_mm);
   }
 
   std::vector<BrickTruth> groundTruth(const SyntheticFrame& frame) const
@@ -326,10 +444,20 @@ private:
         if (label > 0 && frame.face_labels.at<unsigned char>(v, u) == static_cast<unsigned char>(CuboidFace::kTop))
           ++truths[label - 1].visible_top_pixels;
       }
-    for (BrickTruth& truth : truths)
+    const std::vector<int> touching = touchingNeighbourCounts(scene_);
+    for (int i = 0; i < static_cast<int>(truths.size()); ++i)
     {
+      BrickTruth& truth = truths[i];
       const double area_px = unoccludedTopFaceArea(truth);
       truth.visible_fraction = area_px > 0.0 ? std::min(1.0, truth.visible_top_pixels / area_px) : 0.0;
+      const TopFaceVisibility visibility = topFaceVisibility(scene_, caster_, camera_, i);
+      truth.top_face_complete = visibility.complete();
+      truth.top_face_cut_by_border = visibility.cut_by_border;
+      truth.top_face_occluded = visibility.occluded;
+      truth.top_edge_visible_fraction = visibility.edge_visible_fraction;
+      truth.top_face_tilt_deg = visibility.tilt_deg;
+      truth.up_face = visibility.up_face;
+      truth.touching_neighbours = touching[i];
     }
     return truths;
   }
@@ -364,6 +492,8 @@ private:
   LightingProfile profile_;
   FastRandom random_;
   Eigen::Vector3d toward_light_;
+  std::vector<std::optional<BoxPrint>> prints_;  // per brick: printed cardboard, or plain colour
+  std::vector<Eigen::Isometry3d> brick_T_camera_;
 };
 }  // namespace
 

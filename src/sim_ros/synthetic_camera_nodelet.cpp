@@ -61,17 +61,19 @@ private:
 
   void readParameters(const ros::NodeHandle& private_node)
   {
-    config_ = sim::rigConfigFrom([&](const std::string& name) { return paramAsText(private_node, name); });
-    private_node.param("rate_hz", rate_hz_, 15.0);
+    const ParamLookup lookup = [&](const std::string& name) { return paramAsText(private_node, name); };
+    config_ = sim::rigConfigFrom(lookup);
+    const ParamReader read(lookup);
+    read.number("rate_hz", rate_hz_);
     if (!(rate_hz_ > 0.0) || rate_hz_ > 1000.0)
       throw ConfigError("parameter 'rate_hz' = " + std::to_string(rate_hz_) + " must be in (0, 1000]");
-    private_node.param("noise_variants", noise_variants_, 4);
+    read.integer("noise_variants", noise_variants_);
     if (noise_variants_ < 1) throw ConfigError("parameter 'noise_variants' must be >= 1");
-    private_node.param("scene_change_period_s", scene_change_period_s_, 0.0);
+    read.number("scene_change_period_s", scene_change_period_s_);
     if (scene_change_period_s_ < 0.0) throw ConfigError("parameter 'scene_change_period_s' must be >= 0");
-    private_node.param<std::string>("frame_id", frame_id_, "camera_color_optical_frame");
-    private_node.param<std::string>("camera_link", camera_link_, "camera_link");
-    private_node.param("publish_camera_link", publish_camera_link_, true);
+    frame_id_ = lookup("frame_id").value_or(frame_id_);
+    camera_link_ = lookup("camera_link").value_or(camera_link_);
+    read.flag("publish_camera_link", publish_camera_link_);
     if (frame_id_.empty()) throw ConfigError("parameter 'frame_id' must not be empty");
     rig_ = std::make_unique<sim::SyntheticRig>(config_.camera, config_.sensor);
     generator_ = std::make_unique<sim::SceneGenerator>(config_.catalogue, config_.scene);
@@ -126,8 +128,8 @@ private:
   double rate_hz_ = 15.0;
   int noise_variants_ = 4;
   double scene_change_period_s_ = 0.0;
-  std::string frame_id_;
-  std::string camera_link_;
+  std::string frame_id_ = "camera_color_optical_frame";
+  std::string camera_link_ = "camera_link";
   bool publish_camera_link_ = true;
 
   std::unique_ptr<sim::SyntheticRig> rig_;

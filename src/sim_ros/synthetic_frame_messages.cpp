@@ -1,6 +1,8 @@
 #include "brick_pose/sim_ros/synthetic_frame_messages.h"
 
 #include <boost/make_shared.hpp>
+#include <cv_bridge/cv_bridge.h>
+#include <tf2_eigen/tf2_eigen.h>
 
 #include "brick_pose/ros/conversions.h"
 
@@ -18,8 +20,8 @@ SyntheticFrameMessages toMessages(const sim::SyntheticFrame& frame, const ros::T
   header.stamp = stamp;
   header.frame_id = optical_frame_id;
   SyntheticFrameMessages messages;
-  messages.color = ros_conversions::toImageMessage(frame.rgb, "rgb8", header);
-  messages.depth = ros_conversions::toImageMessage(frame.depth_mm, "16UC1", header);
+  messages.color = cv_bridge::CvImage(header, "rgb8", frame.rgb).toImageMsg();
+  messages.depth = cv_bridge::CvImage(header, "16UC1", frame.depth_mm).toImageMsg();
   messages.color_info = boost::make_shared<sensor_msgs::CameraInfo>(ros_conversions::toCameraInfo(frame.camera, header));
   messages.depth_info = boost::make_shared<sensor_msgs::CameraInfo>(*messages.color_info);
   messages.truth = boost::make_shared<BrickTruthArray>();
@@ -29,17 +31,22 @@ SyntheticFrameMessages toMessages(const sim::SyntheticFrame& frame, const ros::T
     BrickTruth brick;
     brick.instance_id = truth.instance_id;
     brick.type = truth.type;
-    brick.pose = ros_conversions::toPose(truth.camera_T_brick);
+    brick.pose = tf2::toMsg(truth.camera_T_brick);
     brick.dimensions.x = truth.dimensions_m.x();
     brick.dimensions.y = truth.dimensions_m.y();
     brick.dimensions.z = truth.dimensions_m.z();
     brick.visible_fraction = truth.visible_fraction;
+    brick.top_face_complete = truth.top_face_complete;
+    brick.top_face_cut_by_border = truth.top_face_cut_by_border;
+    brick.top_face_occluded = truth.top_face_occluded;
+    brick.top_face_tilt_deg = truth.top_face_tilt_deg;
+    brick.touching_neighbours = truth.touching_neighbours;
     messages.truth->bricks.push_back(brick);
 
     geometry_msgs::TransformStamped transform;
     transform.header = header;
     transform.child_frame_id = truthFrameName(truth);
-    transform.transform = ros_conversions::toTransform(truth.camera_T_brick);
+    transform.transform = tf2::eigenToTransform(truth.camera_T_brick).transform;
     messages.truth_frames.push_back(transform);
   }
   return messages;
@@ -55,7 +62,7 @@ geometry_msgs::TransformStamped cameraLinkToOptical(const ros::Time& stamp, cons
   transform.header.stamp = stamp;
   transform.header.frame_id = camera_link;
   transform.child_frame_id = optical_frame_id;
-  transform.transform = ros_conversions::toTransform(link_T_optical);
+  transform.transform = tf2::eigenToTransform(link_T_optical).transform;
   return transform;
 }
 }  // namespace brick_pose

@@ -4,7 +4,7 @@
 // per-stage times, the rate of detections against the camera's rate, and
 // answers to get_brick_pose calls made meanwhile. Prints one JSON line.
 //
-//   brick_pose_latency [--duration-s 20] [--warmup-s 3] [--service-hz 5]
+//   brick_pose_latency [--duration-s 20] [--warmup-s 3] [--service-hz 5] [--label pile_]
 
 #include <algorithm>
 #include <cstdio>
@@ -21,29 +21,76 @@
 
 namespace
 {
+using brick_pose::mean;
 using brick_pose::percentile;
 
+/// One series per stage of the profile, in run order.
 struct Samples
 {
   std::mutex mutex;
-  std::vector<double> latency_ms, frontend_ms, registration_ms, refinement_ms;
+  std::vector<double> latency_ms, segmentation_ms, cloud_ms, roi_ms, registration_ms, refinement_ms, other_ms;
+  std::vector<double> bricks, tracked;
   int frames_with_bricks = 0;
   int camera_frames = 0;
+
+  void add(const brick_pose::BrickDetectionArray& message)
+  {
+    latency_ms.push_back(message.latency_ms);
+    segmentation_ms.push_back(message.segmentation_ms);
+    cloud_ms.push_back(message.cloud_ms);
+    roi_ms.push_back(message.roi_ms);
+    registration_ms.push_back(message.registration_ms);
+    refinement_ms.push_back(message.refinement_ms);
+    // Queues between stages, ingestion, message building and publishing.
+    other_ms.push_back(message.latency_ms - message.frontend_ms - message.registration_ms - message.refinement_ms);
+    bricks.push_back(static_cast<double>(message.detections.size()));
+    int from_previous = 0;
+    for (const auto& detection : message.detections) from_previous += detection.pose_source == "tracked" ? 1 : 0;
+    tracked.push_back(from_previous);
+    if (!message.detections.empty()) ++frames_with_bricks;
+  }
 };
+
+struct Options
+{
+  double duration_s = 20.0;
+  double warmup_s = 3.0;
+  double service_hz = 5.0;
+  std::string label;  ///< prefix of the JSON keys, e.g. "pile_"
+};
+
+Options parseOptions(int argc, char** argv)
+{
+  Options options;
+  for (int i = 1; i + 1 < argc; i += 2)
+  {
+    const std::string flag = argv[i];
+    if (flag == "--label") options.label = argv[i + 1];
+    else if (flag == "--duration-s") options.duration_s = std::atof(argv[i + 1]);
+    else if (flag == "--warmup-s") options.warmup_s = std::atof(argv[i + 1]);
+    else if (flag == "--service-hz") options.service_hz = std::atof(argv[i + 1]);
+    else std::fprintf(stderr, "brick_pose_latency: ignoring unknown option %s\n", flag.c_str());
+  }
+  return options;
+}
+
+void printProfile(const Samples& samples)
+{
+  std::printf("stage profile, ms (p50 / p95):\n");
+  const std::vector<std::pair<const char*, const std::vector<double>*>> stages = {
+      {"segmentation", &samples.segmentation_ms}, {"cloud processing", &samples.cloud_ms},
+      {"ROI filtration", &samples.roi_ms},       {"registration", &samples.registration_ms},
+      {"correction", &samples.refinement_ms},    {"queues + publishing", &samples.other_ms},
+      {"frame to tf", &samples.latency_ms}};
+  for (const auto& [name, values] : stages)
+    std::printf("  %-20s %7.2f / %7.2f\n", name, percentile(*values, 0.5), percentile(*values, 0.95));
+}
 }  // namespace
 
 int main(int argc, char** argv)
 {
   ros::init(argc, argv, "brick_pose_latency", ros::init_options::AnonymousName);
-  double duration_s = 20.0, warmup_s = 3.0, service_hz = 5.0;
-  for (int i = 1; i + 1 < argc; i += 2)
-  {
-    const std::string flag = argv[i];
-    const double value = std::atof(argv[i + 1]);
-    if (flag == "--duration-s") duration_s = value;
-    else if (flag == "--warmup-s") warmup_s = value;
-    else if (flag == "--service-hz") service_hz = value;
-  }
+  const Options options = parseOptions(argc, argv);
   ros::NodeHandle node;
   ros::AsyncSpinner spinner(2);
   spinner.start();
@@ -52,12 +99,7 @@ int main(int argc, char** argv)
   ros::Subscriber detections = node.subscribe<brick_pose::BrickDetectionArray>(
       "/brick_pose/detections", 50, [&](const brick_pose::BrickDetectionArrayConstPtr& message) {
         std::lock_guard<std::mutex> lock(samples.mutex);
-        if (!recording) return;
-        samples.latency_ms.push_back(message->latency_ms);
-        samples.frontend_ms.push_back(message->frontend_ms);
-        samples.registration_ms.push_back(message->registration_ms);
-        samples.refinement_ms.push_back(message->refinement_ms);
-        if (!message->detections.empty()) ++samples.frames_with_bricks;
+        if (recording) samples.add(*message);
       });
   // Counting camera frames: the header only, but it needs the image message.
   ros::Subscriber camera = node.subscribe<sensor_msgs::Image>(
@@ -65,11 +107,11 @@ int main(int argc, char** argv)
         std::lock_guard<std::mutex> lock(samples.mutex);
         if (recording) ++samples.camera_frames;
       });
-  ros::WallDuration(warmup_s).sleep();
+  ros::WallDuration(options.warmup_s).sleep();
   recording = true;
   int calls = 0, answered = 0;
   std::vector<double> call_ms;
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(duration_s);
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(options.duration_s);
   while (ros::ok() && ros::WallTime::now() < end)
   {
     brick_pose::GetBrickPose call;
@@ -77,24 +119,28 @@ int main(int argc, char** argv)
     ++calls;
     if (ros::service::call("/brick_pose/get_brick_pose", call) && call.response.success) ++answered;
     call_ms.push_back((ros::WallTime::now() - start).toSec() * 1e3);
-    ros::WallDuration(1.0 / service_hz).sleep();
+    ros::WallDuration(1.0 / options.service_hz).sleep();
   }
   recording = false;
   std::lock_guard<std::mutex> lock(samples.mutex);
-  const double detection_hz = samples.latency_ms.size() / duration_s;
-  const double camera_hz = samples.camera_frames / duration_s;
-  std::printf("frames %zu (%.1f Hz of a %.1f Hz camera), with bricks %d\n", samples.latency_ms.size(), detection_hz,
-              camera_hz, samples.frames_with_bricks);
-  std::printf("latency ms: p50 %.1f p95 %.1f | front end p50 %.1f | Super4PCS p50 %.1f | refinement p50 %.3f\n",
-              percentile(samples.latency_ms, 0.5), percentile(samples.latency_ms, 0.95),
-              percentile(samples.frontend_ms, 0.5), percentile(samples.registration_ms, 0.5),
-              percentile(samples.refinement_ms, 0.5));
+  const double detection_hz = samples.latency_ms.size() / options.duration_s;
+  const double camera_hz = samples.camera_frames / options.duration_s;
+  std::printf("frames %zu (%.1f Hz of a %.1f Hz camera), with bricks %d, bricks per frame %.1f (%.1f tracked)\n",
+              samples.latency_ms.size(), detection_hz, camera_hz, samples.frames_with_bricks, mean(samples.bricks),
+              mean(samples.tracked));
+  std::printf("latency ms: p50 %.1f p95 %.1f\n", percentile(samples.latency_ms, 0.5),
+              percentile(samples.latency_ms, 0.95));
+  printProfile(samples);
   std::printf("service: %d calls, %d answered with a pose, p95 %.1f ms\n", calls, answered, percentile(call_ms, 0.95));
-  std::printf("{\"latency_p50_ms\": %.2f, \"latency_p95_ms\": %.2f, \"detection_rate_hz\": %.2f, \"camera_rate_hz\": %.2f, "
-              "\"frontend_p50_ms\": %.2f, \"registration_p50_ms\": %.2f, \"service_calls\": %d, \"service_answered\": %d, "
-              "\"service_p95_ms\": %.2f}\n",
-              percentile(samples.latency_ms, 0.5), percentile(samples.latency_ms, 0.95), detection_hz, camera_hz,
-              percentile(samples.frontend_ms, 0.5), percentile(samples.registration_ms, 0.5), calls, answered,
-              percentile(call_ms, 0.95));
+  const char* l = options.label.c_str();
+  std::printf("{\"%slatency_p50_ms\": %.2f, \"%slatency_p95_ms\": %.2f, \"%srate_hz\": %.2f, \"%scamera_rate_hz\": %.2f, "
+              "\"%sbricks_mean\": %.2f, \"%stracked_mean\": %.2f, \"%sfrontend_p50_ms\": %.2f, "
+              "\"%sregistration_p50_ms\": %.2f, \"%sservice_calls\": %d, \"%sservice_answered\": %d, "
+              "\"%sservice_p95_ms\": %.2f}\n",
+              l, percentile(samples.latency_ms, 0.5), l, percentile(samples.latency_ms, 0.95), l, detection_hz, l,
+              camera_hz, l, mean(samples.bricks), l, mean(samples.tracked), l,
+              percentile(samples.segmentation_ms, 0.5) + percentile(samples.cloud_ms, 0.5) +
+                  percentile(samples.roi_ms, 0.5),
+              l, percentile(samples.registration_ms, 0.5), l, calls, l, answered, l, percentile(call_ms, 0.95));
   return samples.latency_ms.empty() ? 1 : 0;
 }

@@ -47,30 +47,4 @@ TEST(RosConversions, BrokenCameraInfoIsNamed)
   nan_focal.K[4] = std::nan("");
   EXPECT_NE(inputErrorOf(nan_focal).find("fy"), std::string::npos) << inputErrorOf(nan_focal);
 }
-
-TEST(RosConversions, ImageMessageKeepsPixelsAndEncoding)
-{
-  cv::Mat depth(3, 5, CV_16UC1);
-  for (int v = 0; v < depth.rows; ++v)
-    for (int u = 0; u < depth.cols; ++u)
-      depth.at<unsigned short>(v, u) = static_cast<unsigned short>(1000 + 10 * v + u);
-  std_msgs::Header header;
-  header.frame_id = "camera_color_optical_frame";
-  const sensor_msgs::ImagePtr message = ros_conversions::toImageMessage(depth(cv::Rect(1, 0, 3, 3)), "16UC1", header);
-  EXPECT_EQ(message->encoding, "16UC1");
-  EXPECT_EQ(message->width, 3u);
-  EXPECT_EQ(message->step, 6u);
-  const auto* pixels = reinterpret_cast<const unsigned short*>(message->data.data());
-  EXPECT_EQ(pixels[0], 1001);
-  EXPECT_EQ(pixels[3 * 2 + 2], 1023) << "row 2, column 2 of the view";
-  EXPECT_EQ(message->header.frame_id, "camera_color_optical_frame");
-}
-
-TEST(RosConversions, PoseRoundTrip)
-{
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-  pose.translation() = Eigen::Vector3d(0.1, -0.2, 1.3);
-  EXPECT_TRUE(ros_conversions::fromPose(ros_conversions::toPose(pose)).isApprox(pose, 1e-12));
-}
 }  // namespace brick_pose

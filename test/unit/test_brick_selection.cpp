@@ -58,6 +58,7 @@ DetectedBrick brickAt(const std::string& type, double length_m, const Eigen::Vec
   brick.T_cam_brick = worldFromCamera().inverse() * world_T_brick;
   brick.dimensions_m = Eigen::Vector3d(length_m, kBrickWidthM, kBrickHeightM);
   brick.fitness = fitness;
+  brick.complete_face = true;
   return brick;
 }
 
@@ -239,4 +240,44 @@ TEST(BrickSelectionTest, UnusableUpVectorIsInputError)
             std::optional<std::size_t>(0));
 }
 }  // namespace
+
+TEST(BrickSelection, APartialFaceIsNeverChosenButStillCoversOthers)
+{
+  const Eigen::Vector3d up = worldUpInCamera();
+  // A partly hidden green brick lies across a complete red one.
+  std::vector<DetectedBrick> bricks = {brickAt("red", 0.30, Eigen::Vector3d(0.0, 0.0, 0.20), 0.0),
+                                       brickAt("green", 0.60, Eigen::Vector3d(0.0, 0.0, 0.40), 90.0)};
+  bricks[1].complete_face = false;
+  EXPECT_FALSE(selectBrick(bricks, SelectionPolicy::kPickable, "", up).has_value())
+      << "the red brick is covered and the green one only partly measured";
+  EXPECT_EQ(selectBrick(bricks, SelectionPolicy::kHighest, "", up), std::optional<std::size_t>(0));
+  try
+  {
+    chooseBrick(bricks, SelectionPolicy::kPickable, "", up);
+    FAIL() << "chooseBrick must throw";
+  }
+  catch (const InputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("that nothing rests on"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1 green partial, 1 red complete"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BrickSelection, FindsABrickByItsId)
+{
+  std::vector<DetectedBrick> bricks = {brickAt("red", 0.30, Eigen::Vector3d(0.0, 0.0, 0.20), 0.0),
+                                       brickAt("red", 0.30, Eigen::Vector3d(0.5, 0.0, 0.20), 0.0)};
+  bricks[0].id = 7;
+  bricks[1].id = 3;
+  EXPECT_EQ(findBrickById(bricks, 3), 1u);
+  try
+  {
+    findBrickById(bricks, 5);
+    FAIL() << "findBrickById must throw";
+  }
+  catch (const InputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("ids: 7, 3"), std::string::npos) << e.what();
+  }
+}
 }  // namespace brick_pose

@@ -62,8 +62,9 @@ TEST(BrickCatalogue, ConfigFileMatchesBuiltInMbzircCatalogue)
     EXPECT_DOUBLE_EQ(actual.width_m, expected.width_m) << expected.name;
     EXPECT_DOUBLE_EQ(actual.height_m, expected.height_m) << expected.name;
     EXPECT_EQ(actual.plate_rgb, expected.plate_rgb) << expected.name;
-    EXPECT_EQ(actual.plate_hsv.min, expected.plate_hsv.min) << expected.name;
-    EXPECT_EQ(actual.plate_hsv.max, expected.plate_hsv.max) << expected.name;
+    ASSERT_TRUE(actual.hasPlateColour()) << expected.name;
+    EXPECT_EQ(actual.plate_hsv->min, expected.plate_hsv->min) << expected.name;
+    EXPECT_EQ(actual.plate_hsv->max, expected.plate_hsv->max) << expected.name;
   }
   EXPECT_DOUBLE_EQ(file.at("orange").length_m, 1.80);
 }
@@ -109,5 +110,39 @@ TEST(BrickCatalogue, ErrorsNameTheProblem)
   {
     EXPECT_NE(std::string(e.what()).find("length_m"), std::string::npos) << e.what();
   }
+}
+
+TEST(BrickCatalogue, TypeWithoutHsvRangeHasNoPlateColour)
+{
+  const BrickCatalogue catalogue = BrickCatalogue::fromYamlString(
+      "bricks:\n"
+      "  - name: carton\n"
+      "    length_m: 0.40\n"
+      "    width_m: 0.30\n"
+      "    height_m: 0.25\n");
+  ASSERT_NE(catalogue.find("carton"), nullptr);
+  EXPECT_FALSE(catalogue.at("carton").hasPlateColour());
+  try
+  {
+    BrickCatalogue::fromYamlString(
+        "bricks:\n  - name: half\n    length_m: 0.4\n    width_m: 0.3\n    height_m: 0.2\n"
+        "    hsv_min: [0, 0, 0]\n");
+    FAIL() << "hsv_min without hsv_max accepted";
+  }
+  catch (const ConfigError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("hsv_max"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("half"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BrickCatalogue, BoxesConfigHoldsPlainCardboardBoxes)
+{
+  const BrickCatalogue boxes = BrickCatalogue::fromYamlFile(BRICK_POSE_SOURCE_DIR "/config/boxes.yaml");
+  ASSERT_GE(boxes.types().size(), 2u);
+  for (const BrickType& type : boxes.types())
+    EXPECT_FALSE(type.hasPlateColour()) << type.name;
+  EXPECT_DOUBLE_EQ(boxes.at("box_large").height_m, 0.25);
+  EXPECT_DOUBLE_EQ(boxes.at("box_small").length_m, 0.30);
 }
 }  // namespace brick_pose

@@ -66,6 +66,20 @@ TEST(HsvSegmenter, FindsTheDrawnPlateAndNotTheBackground)
   for (const int index : segment.pixel_indices) ASSERT_TRUE(truth.at<std::uint8_t>(index / 320, index % 320)) << index;
 }
 
+TEST(HsvSegmenter, SkipsTypesWithoutAPlateColour)
+{
+  cv::Mat rgb(240, 320, CV_8UC3, cv::Scalar(128, 128, 128));
+  cv::rectangle(rgb, cv::Rect(100, 80, 120, 60), cv::Scalar(30, 170, 50), cv::FILLED);  // green plate_rgb
+  BrickType carton = BrickCatalogue::mbzirc2020().at("green");
+  carton.name = "carton";
+  carton.plate_hsv.reset();  // a plain box: for colour-free segmentation only
+  const BrickCatalogue catalogue({BrickCatalogue::mbzirc2020().at("green"), carton});
+  const std::vector<Segment> segments = HsvSegmenter().segment(flatFrame(rgb), catalogue);
+  ASSERT_EQ(segments.size(), 1u);
+  EXPECT_EQ(segments.front().type_name, "green");
+  EXPECT_TRUE(HsvSegmenter().segment(flatFrame(rgb), BrickCatalogue({carton})).empty());
+}
+
 TEST(HsvSegmenter, MaskExcludesGreyAndOtherColours)
 {
   cv::Mat rgb(1, 4, CV_8UC3);
@@ -73,7 +87,7 @@ TEST(HsvSegmenter, MaskExcludesGreyAndOtherColours)
   rgb.at<cv::Vec3b>(0, 1) = {25, 60, 200};   // blue
   rgb.at<cv::Vec3b>(0, 2) = {30, 170, 50};   // green
   rgb.at<cv::Vec3b>(0, 3) = {150, 205, 160}; // green brick body: too pale
-  const cv::Mat mask = HsvSegmenter::thresholdHsv(hsvOf(rgb), BrickCatalogue::mbzirc2020().at("green").plate_hsv);
+  const cv::Mat mask = HsvSegmenter::thresholdHsv(hsvOf(rgb), *BrickCatalogue::mbzirc2020().at("green").plate_hsv);
   EXPECT_EQ(mask.at<std::uint8_t>(0, 0), 0);
   EXPECT_EQ(mask.at<std::uint8_t>(0, 1), 0);
   EXPECT_EQ(mask.at<std::uint8_t>(0, 2), 255);
@@ -82,7 +96,7 @@ TEST(HsvSegmenter, MaskExcludesGreyAndOtherColours)
 
 TEST(HsvSegmenter, RedHueRangeWrapsThroughZero)
 {
-  const HsvRange red = BrickCatalogue::mbzirc2020().at("red").plate_hsv;
+  const HsvRange red = *BrickCatalogue::mbzirc2020().at("red").plate_hsv;
   ASSERT_TRUE(red.wrapsHue());
   cv::Mat hsv(1, 5, CV_8UC3);
   hsv.at<cv::Vec3b>(0, 0) = {178, 200, 200};  // just below 180

@@ -318,6 +318,31 @@ TEST(RigConfig, ErrorsNameTheParameter)
   EXPECT_NE(configErrorOf({{"stereo_shadow", "maybe"}}).find("stereo_shadow"), std::string::npos);
   EXPECT_NE(configErrorOf({{"catalogue_path", "/no/such.yaml"}}).find("/no/such.yaml"), std::string::npos);
   EXPECT_EQ(configErrorOf({}), "") << "defaults are valid";
+  EXPECT_NE(configErrorOf({{"scene", "heap"}}).find("'scene'"), std::string::npos);
+  EXPECT_NE(configErrorOf({{"scene", "pallet_layer"}, {"max_gap_m", "-1"}}).find("max_gap_m"), std::string::npos);
+  EXPECT_NE(configErrorOf({{"max_table_boxes", "0"}}).find("max_table_boxes"), std::string::npos);
+  EXPECT_NE(configErrorOf({{"zero_gap_probability", "2"}}).find("zero_gap_probability"), std::string::npos);
+}
+
+TEST(RigConfig, SceneKindBringsItsDefaultsAndParametersOverrideThem)
+{
+  const RigConfig pallet = rigConfigFrom(lookupFrom({{"scene", "pallet_layer"}}));
+  EXPECT_EQ(pallet.scene.kind, SceneKind::kPalletLayer);
+  EXPECT_DOUBLE_EQ(pallet.scene.min_distance_m, SceneParams::defaultsFor(SceneKind::kPalletLayer).min_distance_m);
+  const RigConfig table = rigConfigFrom(
+      lookupFrom({{"scene", "table_boxes"}, {"min_distance_m", "0.9"}, {"upright_probability", "1"}, {"max_gap_m", "0"}}));
+  EXPECT_EQ(table.scene.kind, SceneKind::kTableBoxes);
+  EXPECT_DOUBLE_EQ(table.scene.min_distance_m, 0.9);
+  EXPECT_DOUBLE_EQ(table.scene.max_elevation_deg, 60.0) << "oblique by default";
+  EXPECT_DOUBLE_EQ(table.scene.upright_probability, 1.0);
+  EXPECT_DOUBLE_EQ(table.scene.max_gap_m, 0.0);
+  const RigConfig oblique = rigConfigFrom(lookupFrom({{"scene", "organised_pile"}, {"view", "oblique"}}));
+  EXPECT_DOUBLE_EQ(oblique.scene.min_elevation_deg, 20.0);
+  EXPECT_DOUBLE_EQ(oblique.scene.max_elevation_deg, 60.0);
+  const RigConfig steeper =
+      rigConfigFrom(lookupFrom({{"view", "oblique"}, {"max_elevation_deg", "50"}}));
+  EXPECT_DOUBLE_EQ(steeper.scene.max_elevation_deg, 50.0) << "elevation parameters override the view";
+  EXPECT_NE(configErrorOf({{"view", "side"}}).find("'view'"), std::string::npos);
 }
 }  // namespace sim
 }  // namespace brick_pose

@@ -1,12 +1,15 @@
 #pragma once
-// The catalogue of cuboid types the pipeline knows: dimensions and the colour
-// of the face it segments (the ferromagnetic plate on the top face).
+// The catalogue of cuboid types the pipeline knows: dimensions and, when the
+// type has one, the colour of the face it segments (the ferromagnetic plate
+// on the top face). Plain cardboard boxes have none: they are segmented
+// without colour.
 //
 // Brick frame convention (used by ground truth, registration and tf output):
 // origin at the centre of the top face, x along the long edge, y along the
 // short edge, z out of the top face (away from the body).
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,8 +36,11 @@ struct BrickType
   double height_m = 0.0;  // along -z, below the top face
   std::array<unsigned char, 3> plate_rgb{{255, 255, 255}};  // top face colour
   std::array<unsigned char, 3> body_rgb{{128, 128, 128}};   // side faces
-  HsvRange plate_hsv;
+  /// HSV range of the top face's colour; empty for a type with no plate
+  /// colour (a plain box), which HSV segmentation skips.
+  std::optional<HsvRange> plate_hsv;
 
+  bool hasPlateColour() const { return plate_hsv.has_value(); }
   Eigen::Vector3d dimensions_m() const { return {length_m, width_m, height_m}; }
   /// Throws ConfigError naming the field when a value is unusable.
   void validate() const;

@@ -4,6 +4,7 @@
 // get the same parsing and the same errors (ConfigError naming the parameter).
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,12 @@ namespace brick_pose
 {
 /// Returns a parameter's value as text, or nothing when it is not set.
 using ParamLookup = std::function<std::optional<std::string>(const std::string& name)>;
+
+/// A lookup over fixed name/value pairs (a parsed file, a test's settings).
+ParamLookup mapParamLookup(std::map<std::string, std::string> values);
+
+/// `first`'s value where it has one, otherwise `second`'s.
+ParamLookup overlayParamLookup(ParamLookup first, ParamLookup second);
 
 double parseDouble(const std::string& name, const std::string& text);
 long long parseInteger(const std::string& name, const std::string& text);

@@ -4,7 +4,10 @@
 // (colour) camera the depth is aligned to.
 
 #include <cstdint>
+#include <optional>
 #include <string>
+
+#include <Eigen/Core>
 
 #include <opencv2/core.hpp>
 
@@ -20,6 +23,10 @@ struct RgbdFrame
   PinholeCamera camera; ///< Intrinsics of the image both rasters live in.
   std::int64_t stamp_ns = 0;
   std::string frame_id; ///< Optical frame (x right, y down, z forward).
+  /// "Up" (against gravity) in this camera's frame at the frame's stamp, when
+  /// known (the ingestion stage looks up the configured up_frame in tf).
+  /// Without it the front end infers up from the scene.
+  std::optional<Eigen::Vector3d> up_in_camera;
 
   int width_px() const { return rgb.cols; }
   int height_px() const { return rgb.rows; }

@@ -77,7 +77,16 @@ struct Rejection
   cv::Rect bounding_box_px;
   int area_px = 0;
   std::string reason;
+  /// A few words that group reasons for counting ("too small", "not flat",
+  /// "cut by an occluder or the border"); see rejectionCategory().
+  std::string category;
 };
+
+/// The category of a rejection reason, for the stages' counts of what they
+/// dropped and why: "cut by an occluder or the border", "too small a part",
+/// "not a rectangle", "not flat", "too tilted", "wrong size", "too few
+/// points", "no outline", "unknown type" or "other".
+std::string rejectionCategory(const std::string& reason);
 
 struct FrontEndResult
 {

@@ -1,15 +1,60 @@
 #pragma once
 // Named parameters of the pipeline stages (front end, registration,
-// refinement), read through a ParamLookup: the nodelets feed them from
-// rosparam, the tools from the command line.
+// refinement, the stages' budgets), read through a ParamLookup: the nodelets
+// feed them from rosparam (private first, then the pipeline's namespace),
+// the tools from the command line or a YAML file. The defaults are those of
+// the params structs; config/pipeline.yaml repeats them for users to edit,
+// and a unit test checks that the two agree.
+
+#include <map>
+#include <string>
 
 #include "brick_pose/catalogue/brick_catalogue.h"
 #include "brick_pose/common/param_parsing.h"
 #include "brick_pose/pose/brick_pose_estimator.h"
+#include "brick_pose/pose/brick_tracker.h"
+#include "brick_pose/pose/tracked_pose.h"
 #include "brick_pose/pipeline/front_end.h"
 
 namespace brick_pose
 {
+/// What every stage nodelet shares.
+struct StageParams
+{
+  /// A stage drops a frame that is older than this (since it arrived) when
+  /// it reaches it: a backlog then costs one frame, not the next ones too.
+  /// Bricks do not move, so the default is generous.
+  double max_latency_ms = 3000.0;
+  /// Subscriber and publisher queue length between stages.
+  int queue_size = 2;
+  /// Period of each stage's summary log line and /diagnostics status.
+  double report_period_s = 5.0;
+
+  void validate() const;  ///< Throws ConfigError naming the field.
+};
+
+/// The registration stage's budget for a whole frame: it takes no further
+/// candidates of a frame once it has spent this long; the ones it skipped
+/// go first in the next frame.
+struct RegistrationStageParams
+{
+  double max_frame_registration_ms = 400.0;
+
+  void validate() const;
+};
+
+/// `track_match_distance_m`, `track_match_angle_deg`, `track_forget_after_s`,
+/// `pose_smoothing_weight` (1: off).
+BrickTrackerParams trackerParamsFrom(const ParamLookup& lookup);
+
+/// `track_poses` (the tracked path), `moved_translation_m`, `moved_rotation_deg`.
+TrackedPoseParams trackedPoseParamsFrom(const ParamLookup& lookup);
+
+/// `max_latency_ms`, `queue_size`, `report_period_s`.
+StageParams stageParamsFrom(const ParamLookup& lookup);
+/// `max_frame_registration_ms`.
+RegistrationStageParams registrationStageParamsFrom(const ParamLookup& lookup);
+
 /// `catalogue_path` (empty or unset: the built-in MBZIRC 2020 bricks).
 BrickCatalogue catalogueFrom(const ParamLookup& lookup);
 
@@ -27,4 +72,9 @@ FrontEndParams frontEndParamsFrom(const ParamLookup& lookup);
 /// (correction | icp | none), `correction_mode` (paper | full),
 /// `icp_max_correspondence_m`, `icp_max_iterations`.
 BrickPoseEstimatorParams estimatorParamsFrom(const ParamLookup& lookup);
+
+/// Every parameter above as the text of its value in effect (after parsing
+/// and defaults), by name: logged by the stages at start, and used by the
+/// test that config/pipeline.yaml agrees with the structs' defaults.
+std::map<std::string, std::string> pipelineParamsInEffect(const ParamLookup& lookup);
 }  // namespace brick_pose

@@ -8,6 +8,7 @@
 // their plates face up, so the mean of their z axes is a good vertical.
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,6 +44,12 @@ struct DetectedBrick
   Eigen::Vector3d dimensions_m = Eigen::Vector3d::Zero();
   /// Registration fitness, 0 (worst) .. 1 (best).
   double fitness = 0.0;
+  /// The whole top face was measured (every edge a real edge). Only such a
+  /// brick is ever chosen: a partial face gives a good orientation but a
+  /// guessed centre, not something to grasp.
+  bool complete_face = false;
+  /// Stable identity (see brick_tracker.h).
+  std::uint32_t id = 0;
 };
 
 /// Unit "up" in the camera frame: `up_in_camera` normalised when given, else
@@ -71,10 +78,24 @@ std::vector<std::size_t> orderBricks(const std::vector<DetectedBrick>& bricks, S
                                      const std::string& type = "",
                                      const std::optional<Eigen::Vector3d>& up_in_camera = std::nullopt);
 
-/// The index of the brick to pick: the first of orderBricks(), except that
-/// kPickable never returns a covered brick. nullopt when no brick of `type`
-/// qualifies (or the list is empty).
+/// The index of the brick to pick (the get_brick_pose service's rule): the
+/// first of orderBricks() whose whole top face was measured; kPickable also
+/// skips covered bricks. Every brick, complete or not, counts for covering
+/// others. nullopt when no brick of `type` qualifies (or the list is empty).
 std::optional<std::size_t> selectBrick(const std::vector<DetectedBrick>& bricks, SelectionPolicy policy,
                                        const std::string& type = "",
                                        const std::optional<Eigen::Vector3d>& up_in_camera = std::nullopt);
+
+/// Like selectBrick(), but throws InputError saying what was seen ("no green
+/// brick that nothing rests on with its whole top face in view (seen: 2
+/// green complete, 1 blue partial)") when none qualifies.
+std::size_t chooseBrick(const std::vector<DetectedBrick>& bricks, SelectionPolicy policy, const std::string& type = "",
+                        const std::optional<Eigen::Vector3d>& up_in_camera = std::nullopt);
+
+/// The index of the brick with identity `id`; throws InputError saying which
+/// ids there are when none has it.
+std::size_t findBrickById(const std::vector<DetectedBrick>& bricks, std::uint32_t id);
+
+/// "2 green complete, 1 blue partial" ("none" for no bricks).
+std::string describeBricks(const std::vector<DetectedBrick>& bricks);
 }  // namespace brick_pose

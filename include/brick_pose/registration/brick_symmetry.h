@@ -38,9 +38,28 @@ struct PoseError
   double translation_mm() const { return 1000.0 * translation_m; }
 };
 
+/// The 24 proper rotations that map the coordinate axes onto (signed)
+/// coordinate axes: the rotations of a cube, identity first.
+std::vector<Eigen::Matrix3d> axisAlignedRotations();
+
+/// The rigid motions of the brick frame that map a cuboid of `dimensions_m`
+/// (length x, width y, height z; origin at the top-face centre, body below)
+/// onto itself: rotations about the cuboid's centre (0, 0, -height / 2). Four
+/// for three different dimensions, eight when two are equal (within
+/// tolerance_m; e.g. a 0.2 x 0.2 cross-section), 24 for a cube. Identity first.
+/// A surface registration cannot tell these apart, so a whole-cuboid pose is
+/// right or wrong only modulo them.
+std::vector<Eigen::Isometry3d> cuboidSymmetries(const Eigen::Vector3d& dimensions_m, double tolerance_m = 1e-3);
+
 /// Rotation angle of estimate^-1 * truth, minimised over the symmetry group,
 /// and the distance between the two origins (face centres).
 PoseError poseErrorModuloSymmetry(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth,
                                   ModelSymmetry symmetry = ModelSymmetry::kHalfTurnZ);
+/// The error of `estimate` against truth * S for the symmetry S (in the
+/// brick frame, see cuboidSymmetries) with the smallest rotation error; the
+/// translation error is then the distance between the brick-frame origins
+/// that estimate and truth * S put in the camera frame.
+PoseError poseErrorModuloSymmetries(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth,
+                                    const std::vector<Eigen::Isometry3d>& symmetries);
 }  // namespace registration
 }  // namespace brick_pose

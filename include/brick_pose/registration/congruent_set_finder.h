@@ -46,8 +46,16 @@ public:
                                                 const CongruenceTolerances& tolerances) const;
 
 private:
-  bool normalsAgree(int p, int q, const Eigen::Vector3d& base_p, const Eigen::Vector3d& base_q,
-                    const Eigen::Vector3d& base_np, const Eigen::Vector3d& base_nq, double tolerance_rad) const;
+  /// Cosine bounds of the three angles a target pair must match (between the
+  /// normals, and between each normal and the segment).
+  struct PairNormalRanges
+  {
+    PairNormalRanges(const Eigen::Vector3d& base_p, const Eigen::Vector3d& base_q, const Eigen::Vector3d& base_np,
+                     const Eigen::Vector3d& base_nq, double tolerance_rad);
+    double min_cos[3];
+    double max_cos[3];
+  };
+  bool normalsAgree(int p, int q, const PairNormalRanges& ranges) const;
 
   const PointSet& target_;
   const ShellPairIndex& index_;

@@ -38,6 +38,11 @@ struct BaseSelectionLimits
   /// diagonals (a crossing at an end point gives no constraint).
   double min_crossing_ratio = 0.15;
   int attempts = 24;  ///< random triples tried before giving up
+  /// With normals: some two of the four base normals must differ by at least
+  /// this (0 = no requirement). A base spanning two faces of a cuboid view
+  /// fits far fewer places of the model than one on a single flat face, which
+  /// fits anywhere on any face as large.
+  double min_normal_spread_rad = 0.0;
 };
 
 /// Draws a wide base from `cloud`: a and b near max_diameter_m apart, c far

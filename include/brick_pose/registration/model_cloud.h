@@ -34,6 +34,15 @@ struct ModelCloudParams
 /// ConfigError for an invalid brick type or spacing.
 PointSet buildBrickModelCloud(const BrickType& brick, const ModelCloudParams& options = ModelCloudParams());
 
+/// The whole surface of the cuboid: all six faces (top, bottom and the four
+/// sides), each on a grid of spacing_m that includes its edges, with outward
+/// normals; a point on an edge belongs to one face only, so every spot of the
+/// surface is sampled about equally densely. The model of whole-cuboid views
+/// (a camera sees one to three faces, which ones depends on the pose), where
+/// the visible part is chosen per pose by the view check (view_consistency.h).
+/// Throws ConfigError for an invalid brick type or spacing.
+PointSet buildCuboidSurfaceCloud(const BrickType& brick, double spacing_m = 0.01);
+
 /// The side faces a camera sees for a brick pose (faces whose outward normal
 /// points towards the camera centre). camera_from_brick maps brick points into
 /// the camera frame.

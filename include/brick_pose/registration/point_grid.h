@@ -52,6 +52,7 @@ private:
   double cell_size_m_ = 0.0;
   double inv_cell_size_ = 0.0;
   std::vector<Slot> table_;  // open addressing, power-of-two size
+  int hash_shift_ = 60;  // 64 - log2(table_.size())
   std::vector<std::uint32_t> sorted_indices_;
 };
 

@@ -18,6 +18,7 @@
 
 #include "brick_pose/registration/point_set.h"
 #include "brick_pose/registration/registration_result.h"
+#include "brick_pose/registration/view_registration_params.h"
 
 namespace brick_pose
 {
@@ -45,7 +46,7 @@ struct Super4PCSParams
   double max_angle_difference_deg = 0.0;
   /// Hard budget for the whole call (search and ICP polish), in seconds of
   /// wall-clock time: on a loaded machine the polish may be cut short.
-  double max_time_s = 0.2;
+  double max_time_s = 0.1;
   /// Upper bound on the bases drawn.
   int max_bases = 200;
   /// Stop once LCP >= good_enough_ratio * overlap.
@@ -72,6 +73,9 @@ struct Super4PCSParams
   int fine_refine_source_sample_size = 4000;
   /// Same seed and inputs => same result (unless the time budget cuts in).
   std::uint64_t seed = 1;
+  /// Whole-object views (whole_view_registration.h); off by default: the
+  /// face registration of the pipeline.
+  ViewRegistrationParams view;
 
   /// Throws ConfigError naming the first unusable field.
   void validate() const;

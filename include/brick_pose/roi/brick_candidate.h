@@ -69,5 +69,7 @@ struct BrickCandidate
   /// and no edge is truncated (false for a partly occluded face that was
   /// still accepted).
   bool complete = false;
+  /// Why the face is not complete, for the user ("" when it is).
+  std::string partial_reason;
 };
 }  // namespace brick_pose

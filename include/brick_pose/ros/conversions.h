@@ -1,14 +1,14 @@
 #pragma once
-// Conversions between the ROS-free core types and ROS messages.
+// Conversions between the ROS-free core types and ROS messages that no ROS
+// library does for us (images go through cv_bridge, poses through tf2_eigen):
+// camera_info to intrinsics, validated field by field.
 
 #include <string>
 
 #include <Eigen/Geometry>
 #include <geometry_msgs/Pose.h>
-#include <geometry_msgs/Transform.h>
-#include <opencv2/core.hpp>
 #include <sensor_msgs/CameraInfo.h>
-#include <sensor_msgs/Image.h>
+#include <tf2_eigen/tf2_eigen.h>
 
 #include "brick_pose/camera/pinhole_camera.h"
 
@@ -24,12 +24,12 @@ sensor_msgs::CameraInfo toCameraInfo(const PinholeCamera& camera, const std_msgs
 /// unusable (the message names the field).
 PinholeCamera fromCameraInfo(const sensor_msgs::CameraInfo& info);
 
-/// Copies `image` into a message with the given encoding ("rgb8", "16UC1", ...).
-sensor_msgs::ImagePtr toImageMessage(const cv::Mat& image, const std::string& encoding,
-                                     const std_msgs::Header& header);
-
-geometry_msgs::Pose toPose(const Eigen::Isometry3d& pose);
-geometry_msgs::Transform toTransform(const Eigen::Isometry3d& pose);
-Eigen::Isometry3d fromPose(const geometry_msgs::Pose& pose);
+/// tf2_eigen's conversion, returning the value.
+inline Eigen::Isometry3d fromPose(const geometry_msgs::Pose& pose)
+{
+  Eigen::Isometry3d isometry;
+  tf2::fromMsg(pose, isometry);
+  return isometry;
+}
 }  // namespace ros_conversions
 }  // namespace brick_pose

@@ -8,11 +8,16 @@
 // and a serializer; the serializer writes nothing, so a subscriber outside the
 // manager (rostopic hz) sees empty messages of type brick_pose/InProcess*.
 // Use the ROS messages (detections, tf, images) to observe from outside.
+//
+// Each type has its own data type name and MD5 (the MD5 of a line naming
+// the C++ type), so that a wrong remap - the segments topic fed to a stage
+// that wants candidates - fails when the two connect instead of delivering a
+// default-constructed message.
 
 #include <ros/message_traits.h>
 #include <ros/serialization.h>
 
-#define BRICK_POSE_INPROCESS_MESSAGE(Type, Name)                                                    \
+#define BRICK_POSE_INPROCESS_MESSAGE(Type, Name, Md5)                                                 \
   namespace ros                                                                                      \
   {                                                                                                  \
   namespace message_traits                                                                           \
@@ -20,7 +25,7 @@
   template <>                                                                                        \
   struct MD5Sum<Type>                                                                                \
   {                                                                                                  \
-    static const char* value() { return "b5c0b1c4a1c7e3f1b2d4e6a8c0e2f4a6"; }                       \
+    static const char* value() { return Md5; }                                                     \
     static const char* value(const Type&) { return value(); }                                       \
   };                                                                                                 \
   template <>                                                                                        \
@@ -32,7 +37,7 @@
   template <>                                                                                        \
   struct Definition<Type>                                                                            \
   {                                                                                                  \
-    static const char* value() { return "# in-process only: no fields on the wire\n"; }            \
+    static const char* value() { return "# in-process only (" #Type "): no fields on the wire\n"; } \
     static const char* value(const Type&) { return value(); }                                       \
   };                                                                                                 \
   }                                                                                                  \

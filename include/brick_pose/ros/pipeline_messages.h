@@ -3,6 +3,7 @@
 // inprocess_message.h). Each stage's output keeps a pointer to its input, so
 // a later stage reaches the frame without anyone copying it.
 
+#include <cstdint>
 #include <vector>
 
 #include <boost/shared_ptr.hpp>
@@ -16,10 +17,13 @@
 
 namespace brick_pose
 {
-/// Stage 1 output: one synchronised, validated aligned RGB-D frame.
+/// Stage 1 (ingestion) output: one synchronised, validated aligned RGB-D frame.
 struct FrameMessage
 {
   std_msgs::Header header;
+  /// Frames ingested before this one since the pipeline started (log lines
+  /// name frames by it).
+  std::uint64_t sequence = 0;
   RgbdFrame frame;
   /// Wall time the last of its three input messages arrived; latency is
   /// measured from here to the tf broadcast.
@@ -35,7 +39,7 @@ inline double frameAgeMs(const FrameMessage& frame)
   return (ros::WallTime::now() - frame.arrival).toSec() * 1e3;
 }
 
-/// Stage 3 output: the segments of one frame.
+/// Stage 2 (segmentation) output: the segments of one frame.
 struct SegmentsMessage
 {
   std_msgs::Header header;
@@ -45,7 +49,7 @@ struct SegmentsMessage
 };
 using SegmentsMessageConstPtr = boost::shared_ptr<const SegmentsMessage>;
 
-/// Stages 2-4 output: the brick candidates of one frame.
+/// Stage 3 (cloud processing and ROI filtration) output: the brick candidates of one frame.
 struct CandidatesMessage
 {
   std_msgs::Header header;
@@ -55,11 +59,14 @@ struct CandidatesMessage
 };
 using CandidatesMessageConstPtr = boost::shared_ptr<const CandidatesMessage>;
 
-/// Stage 5 output: the Super4PCS pose of each candidate that registered.
+/// Stage 4 (registration) output: the Super4PCS pose of each candidate that registered.
 struct RegisteredCandidate
 {
   std::size_t candidate_index = 0;  ///< into candidates->front_end.candidates
   BrickRegistration registration;
+  /// The registration is the brick's last final pose (the tracked path),
+  /// not a Super4PCS search.
+  bool tracked = false;
 };
 
 struct RegistrationsMessage
@@ -72,7 +79,7 @@ struct RegistrationsMessage
 using RegistrationsMessageConstPtr = boost::shared_ptr<const RegistrationsMessage>;
 }  // namespace brick_pose
 
-BRICK_POSE_INPROCESS_MESSAGE(brick_pose::FrameMessage, "Frame")
-BRICK_POSE_INPROCESS_MESSAGE(brick_pose::SegmentsMessage, "Segments")
-BRICK_POSE_INPROCESS_MESSAGE(brick_pose::CandidatesMessage, "Candidates")
-BRICK_POSE_INPROCESS_MESSAGE(brick_pose::RegistrationsMessage, "Registrations")
+BRICK_POSE_INPROCESS_MESSAGE(brick_pose::FrameMessage, "Frame", "a9ec6ff9696138c60c58099cbb669f7f")
+BRICK_POSE_INPROCESS_MESSAGE(brick_pose::SegmentsMessage, "Segments", "134bbee6f82322accbf9194376569001")
+BRICK_POSE_INPROCESS_MESSAGE(brick_pose::CandidatesMessage, "Candidates", "7d2d53592db0d7aa2c9c4226908f7e74")
+BRICK_POSE_INPROCESS_MESSAGE(brick_pose::RegistrationsMessage, "Registrations", "3659e75aded1e6359f4cbd369b1d23f8")

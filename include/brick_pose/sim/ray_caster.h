@@ -24,6 +24,8 @@ struct RayHit
   CuboidFace face = CuboidFace::kNone;
   double ray_t = 0.0;  // point = origin + ray_t * direction
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  /// Where a brick was hit, in that brick's frame (zero for the ground).
+  Eigen::Vector3d point_brick = Eigen::Vector3d::Zero();
 
   bool hitSomething() const { return brick_index != kNothing; }
   bool hitBrick() const { return brick_index >= 0; }

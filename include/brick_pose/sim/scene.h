@@ -7,6 +7,7 @@
 // of the top face; the body spans z in [-height, 0].
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -19,10 +20,37 @@ namespace brick_pose
 {
 namespace sim
 {
+/// Colour-only details of a plain box's surface: none of them changes depth,
+/// all of them put edges into the colour image that are not a box's edges.
+struct SurfaceMarkings
+{
+  enum class Tape : unsigned char
+  {
+    kNone,
+    kBrown,  // packing tape, darker than the cardboard
+    kClear,  // clear tape: a faint sheen
+  };
+
+  /// Kraft cardboard: fibre texture, and a dark flap seam along the top's
+  /// long axis where no tape covers it.
+  bool cardboard = false;
+  /// Printed packaging (cereal and tea boxes, as in the mOSD scenes): every
+  /// face covered in patches of vivid colour with hard edges. Replaces the
+  /// cardboard look when set.
+  bool printed = false;
+  /// A 48 mm tape stripe along the top's long axis and 7 cm down both ends.
+  Tape tape = Tape::kNone;
+  /// Printed labels on the top (0..2): white, lines of text, a barcode.
+  int labels = 0;
+  /// Places the labels, the barcodes' bars and the texture.
+  std::uint64_t seed = 0;
+};
+
 struct PlacedBrick
 {
   BrickType type;
   Eigen::Isometry3d world_T_brick = Eigen::Isometry3d::Identity();
+  SurfaceMarkings markings;
 };
 
 struct Scene
@@ -31,19 +59,11 @@ struct Scene
   /// Pose of the camera's optical frame (x right, y down, z forward).
   Eigen::Isometry3d world_T_camera = Eigen::Isometry3d::Identity();
   std::array<unsigned char, 3> ground_rgb{{120, 112, 100}};
-};
-
-/// Ground truth of one brick in one rendered frame.
-struct BrickTruth
-{
-  int instance_id = 0;  // value of this brick in the instance label image (1-based)
-  std::string type;
-  Eigen::Vector3d dimensions_m = Eigen::Vector3d::Zero();
-  Eigen::Isometry3d camera_T_brick = Eigen::Isometry3d::Identity();
-  /// Visible pixels of the top face over the pixels it would cover if nothing
-  /// occluded it and the image were unbounded (0..1).
-  double visible_fraction = 0.0;
-  int visible_top_pixels = 0;
+  /// Radius of the rounded edges of every brick's top face (cardboard boxes:
+  /// a few millimetres; 0 = sharp). The rounding dips the surface by up to
+  /// this much next to an edge and darkens it, so that boxes touching with
+  /// no gap still show a crease in depth and a dark line in colour.
+  double edge_radius_m = 0.0;
 };
 
 /// Faces of a cuboid, as stored in the face label image.
@@ -57,6 +77,49 @@ enum class CuboidFace : unsigned char
   kPlusY = 5,
   kMinusY = 6,
 };
+
+/// Ground truth of one brick in one rendered frame.
+struct BrickTruth
+{
+  int instance_id = 0;  // value of this brick in the instance label image (1-based)
+  std::string type;
+  Eigen::Vector3d dimensions_m = Eigen::Vector3d::Zero();
+  Eigen::Isometry3d camera_T_brick = Eigen::Isometry3d::Identity();
+  /// Visible pixels of the top face over the pixels it would cover if nothing
+  /// occluded it and the image were unbounded (0..1).
+  double visible_fraction = 0.0;
+  int visible_top_pixels = 0;
+
+  /// True when the top face is wholly in view: it faces the camera and up
+  /// (tilted at most kTopFaceMaxTiltDeg from the world's vertical), and every
+  /// sample along each of its four edges projects at least one pixel inside
+  /// the image and is not hidden by another brick. A detector that calls a
+  /// face "complete" when this is false gave a confident wrong answer.
+  bool top_face_complete = false;
+  /// Some edge sample of the top face falls outside the image (or within one
+  /// pixel of its border).
+  bool top_face_cut_by_border = false;
+  /// Some in-image edge sample of the top face is hidden by another brick.
+  bool top_face_occluded = false;
+  /// Per edge, corner k to corner k+1 of topFaceCornersInBrick(): the
+  /// fraction of its samples that are in the image and unoccluded (0 for all
+  /// when the face looks away from the camera).
+  std::array<double, 4> top_edge_visible_fraction{{0.0, 0.0, 0.0, 0.0}};
+  /// Angle between the brick's +z (out of the top face) and the world's up.
+  /// Near 90 for a box standing on its side or end: its catalogue top face is
+  /// then vertical and must not be taken for a top.
+  double top_face_tilt_deg = 0.0;
+  /// The face whose outward normal points most nearly up in the world.
+  CuboidFace up_face = CuboidFace::kTop;
+  /// Other bricks with a side face within kTouchingToleranceM of one of this
+  /// brick's side faces (side by side or end to end, any gap 0..3 mm).
+  int touching_neighbours = 0;
+};
+
+/// Tilt beyond which a top face counts as a side face in BrickTruth.
+constexpr double kTopFaceMaxTiltDeg = 45.0;
+/// Gap up to which two bricks count as touching in BrickTruth.
+constexpr double kTouchingToleranceM = 0.0035;
 
 using brick_pose::cuboidCornersInBrick;
 using brick_pose::topFaceCornersInBrick;

@@ -9,77 +9,12 @@
 #include <opencv2/core.hpp>
 
 #include "brick_pose/common/errors.h"
+#include "brick_pose/common/yaml_document.h"
 
 namespace brick_pose
 {
 namespace
 {
-// OpenCV's FileStorage reads YAML only after its "%YAML:1.0" directive, which
-// rosparam's YAML loader rejects. Files stay plain YAML; the directive is
-// added here in memory.
-/// "---" alone (trailing blanks or a comment allowed); "----x" is content.
-bool isDocumentMarker(const std::string& line)
-{
-  if (line.rfind("---", 0) != 0) return false;
-  const std::size_t rest = line.find_first_not_of(" \t\r", 3);
-  return rest == std::string::npos || (rest > 3 && line[rest] == '#');
-}
-
-/// The first line that holds content: not blank, not a comment, not a
-/// directive (%...) and not a document marker.
-std::string firstContentLine(const std::string& text)
-{
-  std::istringstream lines(text);
-  std::string line;
-  while (std::getline(lines, line))
-  {
-    const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#' || line[0] == '%' || isDocumentMarker(line))
-      continue;
-    return line;
-  }
-  return "";
-}
-
-/// Rejects a root that is not a map before OpenCV parses it: OpenCV 4.6's
-/// YAML reader loops forever on some roots that start with an indented
-/// sequence, a line of dashes or a tag (e.g. " - 0\nb%\n-" and
-/// "---\n!- -\n-", found by fuzz_catalogue_yaml), and a catalogue's root is
-/// always the map holding `bricks:`.
-void requireMapRoot(const std::string& text)
-{
-  const std::string line = firstContentLine(text);
-  if (line.empty()) throw ConfigError("brick catalogue: empty, expected a top-level list 'bricks:'");
-  // A key starts the root map: a letter, '_', a quote, or a flow map's '{'.
-  // Tags, anchors, sequences and indentation are not a catalogue.
-  const unsigned char first = static_cast<unsigned char>(line[0]);
-  if (!(std::isalpha(first) || first == '_' || first == '"' || first == '\'' || first == '{'))
-    throw ConfigError("brick catalogue: the root must be a map with a top-level list 'bricks:', found '" +
-                      line.substr(0, 40) + "'");
-}
-
-cv::FileStorage openYamlText(const std::string& text)
-{
-  requireMapRoot(text);
-  const std::string directive = "%YAML:1.0\n";
-  const bool has_directive = text.rfind("%YAML", 0) == 0;
-  try
-  {
-    return cv::FileStorage(has_directive ? text : directive + text,
-                           cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
-  }
-  catch (const cv::Exception& e)
-  {
-    throw ConfigError(std::string("brick catalogue: not valid YAML: ") + e.what());
-  }
-  catch (const std::exception& e)
-  {
-    // OpenCV's YAML reader also fails with standard exceptions (e.g.
-    // std::length_error on an unterminated flow map).
-    throw ConfigError(std::string("brick catalogue: not valid YAML: ") + e.what());
-  }
-}
-
 template <std::size_t N, typename T>
 std::array<T, N> readArray(const cv::FileNode& node, const std::string& field, const std::string& brick)
 {
@@ -117,8 +52,18 @@ BrickType parseBrick(const cv::FileNode& node)
     type.plate_rgb = readArray<3, unsigned char>(node["plate_rgb"], "plate_rgb", type.name);
   if (!node["body_rgb"].empty())
     type.body_rgb = readArray<3, unsigned char>(node["body_rgb"], "body_rgb", type.name);
-  type.plate_hsv.min = readArray<3, int>(node["hsv_min"], "hsv_min", type.name);
-  type.plate_hsv.max = readArray<3, int>(node["hsv_max"], "hsv_max", type.name);
+  // Both or neither: a type without them has no plate colour.
+  const bool has_min = !node["hsv_min"].empty(), has_max = !node["hsv_max"].empty();
+  if (has_min != has_max)
+    throw ConfigError("brick catalogue: brick '" + type.name + "' has " + (has_min ? "hsv_min" : "hsv_max") +
+                      " without " + (has_min ? "hsv_max" : "hsv_min") + " (give both, or neither for a type with no plate colour)");
+  if (has_min)
+  {
+    HsvRange range;
+    range.min = readArray<3, int>(node["hsv_min"], "hsv_min", type.name);
+    range.max = readArray<3, int>(node["hsv_max"], "hsv_max", type.name);
+    type.plate_hsv = range;
+  }
   type.validate();
   return type;
 }
@@ -142,12 +87,13 @@ void BrickType::validate() const
   // x is the long edge by convention; the registration's symmetry handling
   // relies on it.
   if (width_m > length_m) fail("width_m must not exceed length_m (x is the long edge)");
+  if (!plate_hsv) return;
   for (int i = 0; i < 3; ++i)
   {
     const int limit = i == 0 ? 180 : 255;
-    if (plate_hsv.min[i] < 0 || plate_hsv.min[i] > limit || plate_hsv.max[i] < 0 || plate_hsv.max[i] > limit)
+    if (plate_hsv->min[i] < 0 || plate_hsv->min[i] > limit || plate_hsv->max[i] < 0 || plate_hsv->max[i] > limit)
       fail("hsv_min/hsv_max channel " + std::to_string(i) + " must be in 0.." + std::to_string(limit));
-    if (i > 0 && plate_hsv.min[i] > plate_hsv.max[i])
+    if (i > 0 && plate_hsv->min[i] > plate_hsv->max[i])
       fail("hsv_min must not exceed hsv_max for saturation and value");
   }
 }
@@ -174,8 +120,10 @@ BrickCatalogue BrickCatalogue::mbzirc2020()
     type.height_m = 0.20;
     type.plate_rgb = plate;
     type.body_rgb = body;
-    type.plate_hsv.min = hsv_min;
-    type.plate_hsv.max = hsv_max;
+    HsvRange range;
+    range.min = hsv_min;
+    range.max = hsv_max;
+    type.plate_hsv = range;
     return type;
   };
   // Keep in step with config/bricks.yaml (a unit test checks they agree).
@@ -189,7 +137,7 @@ BrickCatalogue BrickCatalogue::mbzirc2020()
 
 BrickCatalogue BrickCatalogue::fromYamlString(const std::string& text)
 {
-  cv::FileStorage storage = openYamlText(text);
+  cv::FileStorage storage = openYamlDocument(text, "brick catalogue", "a top-level list 'bricks:'");
   std::vector<BrickType> types;
   // OpenCV asserts (cv::Exception) on lookups in nodes of the wrong kind;
   // the checks below come first, the catch is for what they do not foresee.

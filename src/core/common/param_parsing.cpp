@@ -7,6 +7,23 @@
 
 namespace brick_pose
 {
+ParamLookup mapParamLookup(std::map<std::string, std::string> values)
+{
+  return [values = std::move(values)](const std::string& name) -> std::optional<std::string> {
+    const auto found = values.find(name);
+    if (found == values.end()) return std::nullopt;
+    return found->second;
+  };
+}
+
+ParamLookup overlayParamLookup(ParamLookup first, ParamLookup second)
+{
+  return [first = std::move(first), second = std::move(second)](const std::string& name) {
+    const std::optional<std::string> value = first(name);
+    return value ? value : second(name);
+  };
+}
+
 double parseDouble(const std::string& name, const std::string& text)
 {
   std::size_t used = 0;

@@ -64,6 +64,32 @@ const BrickCatalogue& nonEmpty(const BrickCatalogue& catalogue)
 }
 }  // namespace
 
+std::string rejectionCategory(const std::string& reason)
+{
+  // Most specific phrases first: a split part's reason embeds another one.
+  static const std::vector<std::pair<const char*, const char*>> kPhrases = {
+      {"cut by an occluder or the image border", "cut by an occluder or the border"},
+      {"minimum visible fraction", "too small a part"},
+      {"segment fills", "not a rectangle"},
+      {"not a flat face", "not flat"},
+      {"plane rms", "not flat"},
+      {"face tilt", "too tilted"},
+      {"matches no catalogue type", "wrong size"},
+      {"length", "wrong size"},
+      {"width", "wrong size"},
+      {"thickness", "wrong size"},
+      {"depth pixels, need", "too few points"},
+      {"no points left", "too few points"},
+      {"collinear", "no outline"},
+      {"quadrilateral", "no outline"},
+      {"ray misses", "no outline"},
+      {"unknown brick type", "unknown type"},
+  };
+  for (const auto& [phrase, category] : kPhrases)
+    if (reason.find(phrase) != std::string::npos) return category;
+  return "other";
+}
+
 SegmentationMode parseSegmentationMode(const std::string& name)
 {
   if (name == "hsv") return SegmentationMode::kHsv;
@@ -135,7 +161,10 @@ void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>
     RoiOutcome outcome = roi_filter_.filterSplitting(frame, segment, &result.timings.cloud);
     std::move(outcome.candidates.begin(), outcome.candidates.end(), std::back_inserter(result.candidates));
     for (std::string& reason : outcome.rejections)
-      result.rejections.push_back({segment.type_name, segment.bounding_box_px, segment.area_px, std::move(reason)});
+    {
+      const std::string category = rejectionCategory(reason);
+      result.rejections.push_back({segment.type_name, segment.bounding_box_px, segment.area_px, std::move(reason), category});
+    }
   }
   if (params_.merge_face_pieces) mergeFacePieces(frame, result);
   dropSmallPieces(result);
@@ -162,7 +191,7 @@ void FrontEnd::dropSmallPieces(FrontEndResult& result) const
     reason.precision(3);
     reason << it->type_name << ": visible part " << it->length_m << " x " << it->width_m
            << " m is below the minimum visible fraction " << tolerance.min_visible_fraction;
-    result.rejections.push_back({it->type_name, it->bounding_box_px, it->area_px, reason.str()});
+    result.rejections.push_back({it->type_name, it->bounding_box_px, it->area_px, reason.str(), "too small a part"});
     it = candidates.erase(it);
   }
 }

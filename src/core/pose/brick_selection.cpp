@@ -1,6 +1,7 @@
 #include "brick_pose/pose/brick_selection.h"
 
 #include <algorithm>
+#include <map>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -223,11 +224,41 @@ std::optional<std::size_t> selectBrick(const std::vector<DetectedBrick>& bricks,
 {
   const std::vector<std::size_t> order = orderBricks(bricks, policy, type, up_in_camera);
   if (order.empty()) return std::nullopt;
-  if (policy == SelectionPolicy::kPickable)
+  const bool pickable_only = policy == SelectionPolicy::kPickable;
+  const Eigen::Vector3d unit_up = pickable_only ? resolveUpInCamera(bricks, up_in_camera) : Eigen::Vector3d::Zero();
+  for (const std::size_t index : order)
+    if (bricks[index].complete_face && (!pickable_only || !isCovered(bricks, index, unit_up))) return index;
+  return std::nullopt;
+}
+
+std::size_t chooseBrick(const std::vector<DetectedBrick>& bricks, SelectionPolicy policy, const std::string& type,
+                        const std::optional<Eigen::Vector3d>& up_in_camera)
+{
+  if (const std::optional<std::size_t> chosen = selectBrick(bricks, policy, type, up_in_camera)) return *chosen;
+  throw InputError("no " + (type.empty() ? std::string() : type + " ") + "brick" +
+                   (policy == SelectionPolicy::kPickable ? " that nothing rests on" : "") +
+                   " with its whole top face in view in the latest frame (seen: " + describeBricks(bricks) + ")");
+}
+
+std::size_t findBrickById(const std::vector<DetectedBrick>& bricks, std::uint32_t id)
+{
+  std::string ids;
+  for (std::size_t i = 0; i < bricks.size(); ++i)
   {
-    const Eigen::Vector3d unit_up = resolveUpInCamera(bricks, up_in_camera);
-    if (isCovered(bricks, order.front(), unit_up)) return std::nullopt;
+    if (bricks[i].id == id) return i;
+    ids += (ids.empty() ? "" : ", ") + std::to_string(bricks[i].id);
   }
-  return order.front();
+  throw InputError("no brick with id " + std::to_string(id) + " in the latest frame (ids: " +
+                   (ids.empty() ? "none" : ids) + ")");
+}
+
+std::string describeBricks(const std::vector<DetectedBrick>& bricks)
+{
+  std::map<std::string, int> counts;
+  for (const DetectedBrick& brick : bricks)
+    ++counts[brick.type_name + (brick.complete_face ? " complete" : " partial")];
+  std::string text;
+  for (const auto& [kind, count] : counts) text += (text.empty() ? "" : ", ") + std::to_string(count) + " " + kind;
+  return text.empty() ? "none" : text;
 }
 }  // namespace brick_pose

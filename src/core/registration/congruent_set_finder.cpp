@@ -22,19 +22,53 @@ CongruentSetFinder::CongruentSetFinder(const PointSet& target, const ShellPairIn
 {
 }
 
-// Rigid motions keep the angles between the two normals and between each
-// normal and the segment joining the points.
-bool CongruentSetFinder::normalsAgree(int p, int q, const Eigen::Vector3d& base_p, const Eigen::Vector3d& base_q,
-                                      const Eigen::Vector3d& base_np, const Eigen::Vector3d& base_nq,
-                                      double tolerance_rad) const
+namespace
 {
-  const Eigen::Vector3d& np = target_.normals[p];
-  const Eigen::Vector3d& nq = target_.normals[q];
-  const Eigen::Vector3d segment = target_.points[q] - target_.points[p];
+/// The cosines c with |acos(c) - angle| <= tolerance: [cos(angle + tol), cos(angle - tol)],
+/// the ends clamped to [0, pi]. Comparing cosines spares an acos per pair.
+struct CosineRange
+{
+  double min = -1.0;
+  double max = 1.0;
+  CosineRange(double angle_rad, double tolerance_rad)
+    : min(std::cos(std::min(M_PI, angle_rad + tolerance_rad))), max(std::cos(std::max(0.0, angle_rad - tolerance_rad)))
+  {
+  }
+  bool contains(double cosine) const { return cosine >= min && cosine <= max; }
+};
+}  // namespace
+
+CongruentSetFinder::PairNormalRanges::PairNormalRanges(const Eigen::Vector3d& base_p, const Eigen::Vector3d& base_q,
+                                                      const Eigen::Vector3d& base_np, const Eigen::Vector3d& base_nq,
+                                                      double tolerance_rad)
+{
   const Eigen::Vector3d base_segment = base_q - base_p;
-  return std::abs(angleBetween(np, nq) - angleBetween(base_np, base_nq)) <= tolerance_rad &&
-         std::abs(angleBetween(np, segment) - angleBetween(base_np, base_segment)) <= tolerance_rad &&
-         std::abs(angleBetween(nq, segment) - angleBetween(base_nq, base_segment)) <= tolerance_rad;
+  const double angles[3] = {angleBetween(base_np, base_nq), angleBetween(base_np, base_segment),
+                            angleBetween(base_nq, base_segment)};
+  for (int k = 0; k < 3; ++k)
+  {
+    min_cos[k] = std::cos(std::min(M_PI, angles[k] + tolerance_rad));
+    max_cos[k] = std::cos(std::max(0.0, angles[k] - tolerance_rad));
+  }
+}
+
+// Rigid motions keep the angles between the two normals and between each
+// normal and the segment joining the points; the angles are compared through
+// their cosines (|acos(c) - a| <= t  <=>  cos(a + t) <= c <= cos(a - t)).
+bool CongruentSetFinder::normalsAgree(int p, int q, const PairNormalRanges& ranges) const
+{
+  const Eigen::Vector3d np = target_.normals[p].normalized();
+  const Eigen::Vector3d nq = target_.normals[q].normalized();
+  const Eigen::Vector3d segment = (target_.points[q] - target_.points[p]).normalized();
+  const double cosines[3] = {np.dot(nq), np.dot(segment), nq.dot(segment)};
+  for (int k = 0; k < 3; ++k)
+  {
+    // Round-off puts the dot product of equal unit normals just above 1.
+    const double cosine = std::clamp(cosines[k], -1.0, 1.0);
+    if (!(cosine >= ranges.min_cos[k] && cosine <= ranges.max_cos[k]))
+      return false;
+  }
+  return true;
 }
 
 std::vector<std::pair<int, int>> CongruentSetFinder::orderedPairs(double radius_m, const Eigen::Vector3d& base_p,
@@ -44,13 +78,14 @@ std::vector<std::pair<int, int>> CongruentSetFinder::orderedPairs(double radius_
                                                                   const CongruenceTolerances& tolerances) const
 {
   const bool use_normals = target_.hasNormals() && base_np.squaredNorm() > 0.0 && base_nq.squaredNorm() > 0.0;
+  const PairNormalRanges forward(base_p, base_q, base_np, base_nq, tolerances.normal_rad);
   std::vector<std::pair<int, int>> ordered;
   for (const auto& [i, j] : index_.pairsInShell(radius_m, tolerances.distance_m))
   {
     // Both orders: the crossing point divides p-q in the ratio t : (1 - t).
-    if (!use_normals || normalsAgree(i, j, base_p, base_q, base_np, base_nq, tolerances.normal_rad))
+    if (!use_normals || normalsAgree(i, j, forward))
       ordered.emplace_back(i, j);
-    if (!use_normals || normalsAgree(j, i, base_p, base_q, base_np, base_nq, tolerances.normal_rad))
+    if (!use_normals || normalsAgree(j, i, forward))
       ordered.emplace_back(j, i);
   }
   return ordered;

@@ -34,6 +34,20 @@ int drawNearBest(int count, double fraction, std::mt19937_64& rng, Score&& score
     return -1;
   return near_best[std::uniform_int_distribution<std::size_t>(0, near_best.size() - 1)(rng)];
 }
+
+/// Whether some two of the base's normals differ by at least min_spread_rad
+/// (always true without a requirement or without normals).
+bool spansNormals(const CoplanarBase& base, double min_spread_rad)
+{
+  if (!(min_spread_rad > 0.0) || base.normals[0].squaredNorm() == 0.0)
+    return true;
+  const double max_cos = std::cos(min_spread_rad);
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j)
+      if (base.normals[i].dot(base.normals[j]) <= max_cos)
+        return true;
+  return false;
+}
 }  // namespace
 
 double CoplanarBase::segmentAngle_rad() const
@@ -116,6 +130,8 @@ std::optional<CoplanarBase> drawCoplanarBase(const PointSet& cloud, const BaseSe
       base.points[k] = p[base.indices[k]];
       base.normals[k] = cloud.hasNormals() ? cloud.normals[base.indices[k]].normalized() : Eigen::Vector3d::Zero();
     }
+    if (!spansNormals(base, limits.min_normal_spread_rad))
+      continue;
     crossingRatios(base.points[0], base.points[1], base.points[2], base.points[3], base.t1, base.t2);
     return base;
   }

@@ -14,7 +14,11 @@ namespace
 {
 constexpr std::int64_t kAxisMask = (std::int64_t(1) << 21) - 1;
 
-std::uint64_t hashKey(std::uint64_t key) { return key * 0x9E3779B97F4A7C15ull; }
+/// Fibonacci hashing: the *high* bits of key * 2^64 / phi. The low bits of
+/// the product depend only on the low bits of the key, which hold the z cell
+/// alone, so masking them sent every cell of a level face (one z) to the same
+/// run of slots and made a lookup, hit or miss, walk that whole run.
+std::uint64_t hashKey(std::uint64_t key, int shift) { return (key * 0x9E3779B97F4A7C15ull) >> shift; }
 
 /// Cell index of a scaled coordinate; clamped so that absurd coordinates
 /// cannot overflow the conversion (wrapping cells only cost extra checks).
@@ -55,8 +59,12 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double max_radi
   for (std::size_t i = 0; i < keyed.size(); ++i)
     cell_count += (i == 0 || keyed[i].first != keyed[i - 1].first) ? 1 : 0;
   std::size_t capacity = 16;
+  hash_shift_ = 60;
   while (capacity < 2 * cell_count)
+  {
     capacity *= 2;
+    --hash_shift_;
+  }
   table_.assign(capacity, Slot());
   sorted_indices_.resize(keyed.size());
 
@@ -69,7 +77,7 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double max_radi
       sorted_indices_[end] = keyed[end].second;
       ++end;
     }
-    std::uint64_t slot = hashKey(keyed[begin].first) & mask;
+    std::uint64_t slot = hashKey(keyed[begin].first, hash_shift_) & mask;
     while (table_[slot].key != kEmptyKey)
       slot = (slot + 1) & mask;
     table_[slot] = {keyed[begin].first, static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(end)};
@@ -80,7 +88,7 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double max_radi
 const PointGrid::Slot* PointGrid::findCell(std::uint64_t key) const
 {
   const std::uint64_t mask = table_.size() - 1;
-  for (std::uint64_t slot = hashKey(key) & mask;; slot = (slot + 1) & mask)
+  for (std::uint64_t slot = hashKey(key, hash_shift_) & mask;; slot = (slot + 1) & mask)
   {
     const Slot& candidate = table_[slot];
     if (candidate.key == key)

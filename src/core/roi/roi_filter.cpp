@@ -310,6 +310,9 @@ std::optional<std::string> RoiFilter::assignType(const Segment& segment, BrickCa
       return segment.type_name + ": " + *reason;
     candidate.type_name = type->name;
     candidate.complete = complete(*type, tolerance.tolerance_m) && !anyTruncated(candidate);
+    if (!candidate.complete)
+      candidate.partial_reason = anyTruncated(candidate) ? "an edge is cut by an occluder or the image border"
+                                                         : "smaller than the catalogue's top face";
     return std::nullopt;
   }
 

@@ -195,12 +195,14 @@ std::vector<Segment> HsvSegmenter::segment(const RgbdFrame& frame, const BrickCa
   std::vector<Segment> segments;
   for (const BrickType& type : catalogue.types())
   {
+    // A type with no plate colour (a plain box) is for colour-free segmentation.
+    if (!type.hasPlateColour()) continue;
     std::vector<Segment> found;
-    for (const cv::Rect& box : coarseBoxes(coarse_hsv, type.plate_hsv, image_size))
+    for (const cv::Rect& box : coarseBoxes(coarse_hsv, *type.plate_hsv, image_size))
     {
       cv::Mat hsv;
       cv::cvtColor(frame.rgb(box), hsv, cv::COLOR_RGB2HSV);
-      cv::Mat mask = thresholdHsv(hsv, type.plate_hsv);
+      cv::Mat mask = thresholdHsv(hsv, *type.plate_hsv);
       cleanMask(mask);
       cutAtDepthJumps(mask, frame.depth_m(box));
       std::vector<Segment> in_box = components(mask, frame.depth_m, type.name, box, image_size.width);

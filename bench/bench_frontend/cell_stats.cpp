@@ -1,0 +1,124 @@
+#include "bench_frontend/cell_stats.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace brick_pose
+{
+namespace frontend_bench
+{
+namespace
+{
+/// Legacy tops >= this visible give dimension and corner errors.
+constexpr double kMeasuredMinVisibleFraction = 0.95;
+
+void append(std::vector<double>& to, const std::vector<double>& from) { to.insert(to.end(), from.begin(), from.end()); }
+
+/// The rejection whose box holds most of a missed top, as the earlier
+/// benchmark named misses (the reason up to its first number).
+std::string missReason(const FrontEndResult& result, const eval::SceneTruth& truth, int face, bool verbose,
+                       const std::string& frame_name)
+{
+  const eval::FaceTruth& top = truth.faces[static_cast<std::size_t>(face)];
+  for (const Rejection& rejection : result.rejections)
+  {
+    int inside = 0;
+    for (int v = rejection.bounding_box_px.y; v < rejection.bounding_box_px.br().y; v += 2)
+      for (int u = rejection.bounding_box_px.x; u < rejection.bounding_box_px.br().x; u += 2)
+        if (truth.face_index.at<int>(v, u) == face) ++inside;
+    if (inside * 4 > top.visible_px / 3)
+    {
+      if (verbose)
+        std::fprintf(stderr, "%s: miss %s vis %.2f: %s\n", frame_name.c_str(), top.type.c_str(), top.visible_fraction,
+                     rejection.reason.c_str());
+      return rejection.reason.substr(0, rejection.reason.find_first_of("0123456789"));
+    }
+  }
+  return "no segment";
+}
+
+/// Why a candidate is not one of the earlier benchmark's true positives
+/// (its names: "wrong type (X for Y)", "second candidate on a top").
+std::string falsePositiveReason(const BrickCandidate& candidate, const eval::CandidateMatch& match,
+                                const eval::SceneTruth& truth)
+{
+  if (match.face < 0) return eval::toString(match.outcome);
+  const eval::FaceTruth& face = truth.faces[static_cast<std::size_t>(match.face)];
+  if (match.outcome == eval::CandidateOutcome::kWrongType)
+    return "wrong type (" + candidate.type_name + " for " + face.type + ")";
+  // On a top of its type but not first on it (whatever its coverage).
+  return face.role == eval::FaceRole::kTop ? "second candidate on a top" : eval::toString(match.outcome);
+}
+
+void recordLegacyErrors(const BrickCandidate& candidate, const eval::FaceTruth& face, const PinholeCamera& camera,
+                        CellStats& stats)
+{
+  const eval::TopFaceGeometry& truth = face.geometry;
+  stats.quad_dim_error_mm.push_back(1000.0 * std::abs(candidate.length_m - truth.length_m));
+  stats.quad_dim_error_mm.push_back(1000.0 * std::abs(candidate.width_m - truth.width_m));
+  stats.obb_dim_error_mm.push_back(1000.0 * std::abs(candidate.obb.extents_m.x() - truth.length_m));
+  stats.obb_dim_error_mm.push_back(1000.0 * std::abs(candidate.obb.extents_m.y() - truth.width_m));
+  std::array<Eigen::Vector2d, 4> corners_px;
+  for (int k = 0; k < 4; ++k) corners_px[k] = camera.project(truth.corners_m[k]);
+  for (const double error : eval::cornerErrorsPx(candidate.corners_px, corners_px))
+    stats.corner_error_px.push_back(error);
+}
+}  // namespace
+
+void CellStats::merge(const CellStats& other)
+{
+  tally.merge(other.tally);
+  append(total_ms, other.total_ms);
+  append(segmentation_ms, other.segmentation_ms);
+  append(cloud_ms, other.cloud_ms);
+  append(roi_ms, other.roi_ms);
+  append(cpu_ms, other.cpu_ms);
+  append(quad_dim_error_mm, other.quad_dim_error_mm);
+  append(obb_dim_error_mm, other.obb_dim_error_mm);
+  append(corner_error_px, other.corner_error_px);
+  for (const auto& [reason, count] : other.miss_reasons) miss_reasons[reason] += count;
+  for (const auto& [reason, count] : other.false_positive_reasons) false_positive_reasons[reason] += count;
+}
+
+void recordFrame(const FrontEndResult& result, double cpu_ms, const eval::SceneTruth& truth,
+                 const PinholeCamera& camera, const eval::MatchParams& match_params, bool verbose,
+                 const std::string& frame_name, CellStats& stats)
+{
+  stats.total_ms.push_back(result.timings.total_ms);
+  stats.segmentation_ms.push_back(result.timings.segmentation_ms);
+  stats.cloud_ms.push_back(result.timings.cloud.total());
+  stats.roi_ms.push_back(result.timings.roi_ms);
+  stats.cpu_ms.push_back(cpu_ms);
+
+  const eval::FrameMatch match = eval::matchCandidates(result.candidates, truth, camera, match_params);
+  stats.tally.add(match, match_params.legacy_min_visible_fraction);
+  for (std::size_t c = 0; c < match.candidates.size(); ++c)
+  {
+    const eval::CandidateMatch& candidate_match = match.candidates[c];
+    const BrickCandidate& candidate = result.candidates[c];
+    if (verbose && candidate_match.false_complete)
+    {
+      const eval::FaceTruth* face =
+          candidate_match.face >= 0 ? &truth.faces[static_cast<std::size_t>(candidate_match.face)] : nullptr;
+      std::fprintf(stderr, "%s: false complete %s %.3f x %.3f m, %d px, fill %.2f: %s (share %.2f, coverage %.2f%s%s)\n",
+                   frame_name.c_str(), candidate.type_name.c_str(), candidate.length_m, candidate.width_m,
+                   candidate.area_px, candidate.fill_ratio, eval::toString(candidate_match.outcome),
+                   candidate_match.face_share, candidate_match.coverage, face ? ", truth: " : "",
+                   face ? (face->not_whole_reason.empty() ? eval::toString(face->role) : face->not_whole_reason.c_str())
+                        : "");
+    }
+    if (!candidate_match.legacy_true_positive)
+    {
+      ++stats.false_positive_reasons[falsePositiveReason(candidate, candidate_match, truth)];
+      continue;
+    }
+    const eval::FaceTruth& face = truth.faces[static_cast<std::size_t>(candidate_match.face)];
+    if (face.has_geometry && face.visible_fraction >= kMeasuredMinVisibleFraction)
+      recordLegacyErrors(candidate, face, camera, stats);
+  }
+  for (const eval::TopMatch& top : match.tops)
+    if (top.visible_fraction >= match_params.legacy_min_visible_fraction && !top.legacy_found)
+      ++stats.miss_reasons[missReason(result, truth, top.face, verbose, frame_name)];
+}
+}  // namespace frontend_bench
+}  // namespace brick_pose

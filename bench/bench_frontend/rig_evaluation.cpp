@@ -1,0 +1,117 @@
+#include "bench_frontend/rig_evaluation.h"
+
+#include <chrono>
+#include <memory>
+#include <optional>
+
+#include "brick_pose/eval/rig_truth.h"
+#include "brick_pose/frame/frame_builder.h"
+#include "brick_pose/sim/synthetic_rig.h"
+#include "common/run_environment.h"
+
+namespace brick_pose
+{
+namespace frontend_bench
+{
+namespace
+{
+struct RenderedFrame
+{
+  sim::Scene scene;
+  sim::SyntheticFrame synthetic;
+  Eigen::Vector3d up_in_camera = Eigen::Vector3d::UnitZ();
+};
+
+RenderedFrame render(const sim::SceneGenerator& generator, const SceneClass& scene_class, const FrameSpec& spec,
+                     const PinholeCamera& camera)
+{
+  RenderedFrame frame;
+  frame.scene = generator.generate(spec.seed);
+  frame.synthetic =
+      sim::SyntheticRig(camera, sensorFor(scene_class, spec.lighting)).render(frame.scene, spec.seed);
+  frame.up_in_camera = frame.scene.world_T_camera.linear().transpose() * Eigen::Vector3d::UnitZ();
+  return frame;
+}
+
+RgbdFrame toRgbd(const RenderedFrame& frame, const PinholeCamera& camera, int index)
+{
+  FrameHeader header;
+  header.stamp_ns = static_cast<std::int64_t>(index) * 33333333;
+  header.frame_id = "camera_color_optical_frame";
+  return makeRgbdFrame(frame.synthetic.rgb, frame.synthetic.depth_mm, camera, header);
+}
+}  // namespace
+
+std::vector<BrickCatalogue> classCatalogues(const std::vector<SceneClass>& classes, const Options& options)
+{
+  const BrickCatalogue bricks = BrickCatalogue::mbzirc2020();
+  std::optional<BrickCatalogue> boxes;
+  std::vector<BrickCatalogue> catalogues;
+  for (const SceneClass& scene_class : classes)
+  {
+    if (scene_class.catalogue == ClassCatalogue::kBricks)
+    {
+      catalogues.push_back(bricks);
+      continue;
+    }
+    if (!boxes)
+      boxes = BrickCatalogue::fromYamlFile(options.box_catalogue.empty()
+                                               ? bench::sourceDirectory() + "/config/boxes.yaml"
+                                               : options.box_catalogue);
+    catalogues.push_back(*boxes);
+  }
+  return catalogues;
+}
+
+RigResults runRig(const std::vector<BrickCatalogue>& catalogues, const std::vector<SceneClass>& classes,
+                  const std::vector<ModeSpec>& modes, const std::vector<Resolution>& resolutions,
+                  const std::vector<FrameSpec>& plan, const Options& options)
+{
+  std::vector<std::unique_ptr<sim::SceneGenerator>> generators(classes.size());
+  for (std::size_t c = 0; c < classes.size(); ++c)
+    if (classes[c].kind)
+      generators[c] = std::make_unique<sim::SceneGenerator>(catalogues[c], sceneParamsFor(classes[c]));
+  const eval::MatchParams match_params;
+
+  RigResults results;
+  for (std::size_t c = 0; c < classes.size(); ++c)
+    for (std::size_t m = 0; m < modes.size(); ++m)
+    {
+      const std::string reason = modeNotApplicable(modes[m], catalogues[c]);
+      if (modes[m].mode && !reason.empty()) results.not_applicable[{c, m}] = reason;
+    }
+  for (std::size_t m = 0; m < modes.size(); ++m)
+  {
+    if (!modes[m].mode) continue;
+    for (std::size_t r = 0; r < resolutions.size(); ++r)
+    {
+      const PinholeCamera& camera = resolutions[r].camera;
+      for (std::size_t i = 0; i < plan.size(); ++i)
+      {
+        const FrameSpec& spec = plan[i];
+        if (results.not_applicable.count({spec.scene_class, m})) continue;
+        const RenderedFrame rendered = render(*generators[spec.scene_class], classes[spec.scene_class], spec, camera);
+        const auto build_start = std::chrono::steady_clock::now();
+        const RgbdFrame frame = toRgbd(rendered, camera, static_cast<int>(i));
+        if (m == 0 && resolutions[r].legacy) results.frame_build_ms.push_back(bench::millisecondsSince(build_start));
+        // A front end per frame: the up direction is the frame's. Building
+        // one is cheap next to processing a frame.
+        const FrontEnd front_end(catalogues[spec.scene_class], frontEndParamsFor(modes[m], rendered.up_in_camera));
+        const double cpu_start = bench::processCpuMs();
+        const FrontEndResult result = front_end.process(frame);
+        const double cpu_ms = bench::processCpuMs() - cpu_start;
+        const eval::SceneTruth truth = eval::rigSceneTruth(rendered.synthetic, rendered.up_in_camera);
+        const CellKey key{spec.scene_class, m, r};
+        const std::string name = classes[spec.scene_class].rig_kind + " frame " + std::to_string(i) + " " +
+                                 modes[m].name + " " + resolutions[r].label;
+        CellStats frame_stats;
+        recordFrame(result, cpu_ms, truth, camera, match_params, options.verbose, name, frame_stats);
+        results.cells[key].merge(frame_stats);
+        if (spec.legacy) results.legacy_cells[key].merge(frame_stats);
+      }
+    }
+  }
+  return results;
+}
+}  // namespace frontend_bench
+}  // namespace brick_pose

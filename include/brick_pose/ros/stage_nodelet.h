@@ -1,0 +1,72 @@
+#pragma once
+// What every pipeline stage nodelet shares, in the spirit of pcl_ros's
+// PCLNodelet: parameters through one validated lookup (the stage's private
+// namespace first, then the pipeline's), "<stage> not started: <reason>"
+// when they are unusable, the latency-budget drop, stage timing, one summary
+// line per report period (a warning when something was dropped) and a
+// /diagnostics status. A stage implements initStage() and its callbacks.
+
+#include <memory>
+#include <string>
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <nodelet/nodelet.h>
+#include <ros/ros.h>
+
+#include "brick_pose/common/param_parsing.h"
+#include "brick_pose/pipeline/pipeline_config.h"
+#include "brick_pose/pipeline/stage_stats.h"
+#include "brick_pose/ros/pipeline_messages.h"
+
+namespace brick_pose
+{
+class StageNodelet : public nodelet::Nodelet
+{
+public:
+  ~StageNodelet() override;
+
+protected:
+  /// `stage` names it in logs and diagnostics ("roi_filter"); `item_in` and
+  /// `item_out` name what it turns into what ("segments", "candidates"),
+  /// empty when it passes frames only.
+  StageNodelet(std::string stage, std::string item_in = "", std::string item_out = "");
+
+  /// The stage's own set-up: read its parameters from `lookup`, create its
+  /// publishers and subscribers. Throw ConfigError to leave it idle.
+  virtual void initStage(const ParamLookup& lookup) = 0;
+
+  const StageParams& stageParams() const { return stage_params_; }
+  /// The manager's worker-pool node handle in the pipeline's namespace.
+  ros::NodeHandle& node() { return getNodeHandle(); }
+
+  /// False, counted and warned about (throttled), when `frame` is already
+  /// older than max_latency_ms: a stage spends no time on it.
+  bool withinLatencyBudget(const FrameMessage& frame);
+
+  /// Bookkeeping of the stage's work, reported every report_period_s.
+  void frameIn();
+  void frameOut(const FrameMessage& frame, double processing_ms);
+  void frameDropped(const std::string& reason);
+  void itemsProcessed(int in, int out);
+  void itemDropped(const std::string& reason, int count = 1);
+
+  /// "frame 1523 (t 12.345)" for log lines.
+  static std::string frameLabel(const FrameMessage& frame);
+
+private:
+  void onInit() final;
+  void report(const ros::WallTimerEvent&);
+  void fillDiagnostics(diagnostic_updater::DiagnosticStatusWrapper& status);
+
+  std::string stage_;
+  StageParams stage_params_;
+  StageStats log_stats_;
+  StageStats diagnostic_stats_;
+  StageReport last_diagnostic_report_;
+  bool started_ = false;
+  std::string not_started_reason_;
+  ros::WallTime last_log_, last_diagnostics_;
+  ros::WallTimer report_timer_;
+  std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
+};
+}  // namespace brick_pose

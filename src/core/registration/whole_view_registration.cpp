@@ -1,0 +1,664 @@
+#include "brick_pose/registration/whole_view_registration.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <random>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+
+#include "brick_pose/common/statistics.h"
+#include "brick_pose/registration/congruent_set_finder.h"
+#include "brick_pose/registration/coplanar_base.h"
+#include "brick_pose/registration/icp_polish.h"
+#include "brick_pose/registration/model_symmetry.h"
+#include "brick_pose/registration/normal_estimation.h"
+#include "brick_pose/registration/point_to_plane_icp.h"
+#include "brick_pose/registration/rigid_fit.h"
+#include "brick_pose/registration/shell_pair_index.h"
+#include "brick_pose/registration/uniform_sampling.h"
+#include "brick_pose/registration/view_consistency.h"
+
+namespace brick_pose
+{
+namespace registration
+{
+namespace
+{
+constexpr double kDegToRad = M_PI / 180.0;
+constexpr int kMaxBaseDrawFailures = 8;
+// Normal estimation radius over the sample spacing (as the face mode's).
+constexpr double kNormalRadiusPerSpacing = 2.5;
+// Match radius over the scan sample's median spacing (as the LCP radius).
+constexpr double kMatchRadiusPerSpacing = 1.3;
+// Model points kept for the model-side checks and the symmetry probe.
+constexpr int kModelProbeSize = 1000;
+// Dense models are thinned to this many points for scoring.
+constexpr int kMaxScoringModelPoints = 20000;
+// Scan points of the cheap coverage test in the search.
+constexpr int kSearchCoveragePoints = 200;
+// A scan shows several faces when this fraction of its trusted normals is
+// farther than kSpanAngleDeg from their mean; bases must then span faces.
+constexpr double kSpanAngleDeg = 45.0;
+constexpr double kMinSpanFraction = 0.1;
+// Candidates below this scan coverage are not kept as hypotheses at all,
+// nor those further than the window below the best one's (which cannot be a
+// close second).
+constexpr double kMinHypothesisCoverage = 0.3;
+constexpr double kHypothesisCoverageWindow = 0.25;
+// Two poses are one hypothesis when this close (modulo true symmetries). The
+// offset is about the success tolerance (10 mm): a pose slid further along a
+// face that ends out of view is a hypothesis of its own, and when it scores
+// nearly as well the registration cannot claim that precision.
+constexpr double kSameHypothesisDeg = 10.0;
+constexpr double kSameHypothesisOffsetM = 0.012;
+// Point-to-plane fit of each hypothesis: reach over the match radius.
+constexpr double kHypothesisFitRadiusPerMatchRadius = 3.0;
+constexpr int kHypothesisFitIterations = 8;
+constexpr std::size_t kFitScanPoints = 300;
+// The polished pose is kept unless its combined score drops by more.
+constexpr double kMaxScoreDropByPolish = 0.03;
+// Model faces turned towards the viewpoint by more than this take part in the
+// polish: a grazing face has next to no scan points, and its boundary, unmatched
+// in the scan, would only hide the fold edge the scan does show.
+constexpr double kPolishVisibleCos = 0.2;
+constexpr double kPolishReachPerPairTolerance = 2.5;
+constexpr int kClockStride = 32;
+
+std::string formatScore(double value)
+{
+  std::ostringstream text;
+  text.precision(3);
+  text << value;
+  return text.str();
+}
+
+/// What the view search works on.
+struct ViewInput
+{
+  PointSet model;  ///< unit normals; thinned for scoring
+  PointSet model_sample;  ///< congruent sets come from these
+  PointSet model_probe;  ///< model-side checks, symmetry probe
+  PointSet scan;  ///< dense scan sample, normals towards the viewpoint
+  std::vector<int> trusted;  ///< scan points whose normals are trusted
+  PointSet base_cloud;  ///< trusted scan points the bases are drawn from
+  double match_radius_m = 0.0;
+  double pair_tolerance_m = 0.0;
+  double scan_diameter_m = 0.0;
+  double model_diameter_m = 0.0;
+  bool bases_span_faces = false;
+};
+
+struct Hypothesis
+{
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< model -> target
+  double target_coverage = 0.0;  ///< the search's quick score
+  ViewScore view;
+  bool view_evaluated = false;
+};
+
+PointSet withUnitNormals(PointSet cloud)
+{
+  for (Eigen::Vector3d& normal : cloud.normals)
+    if (normal.squaredNorm() > 0.0)
+      normal.normalize();
+  return cloud;
+}
+
+PointSet prepareModel(const PointSet& source, std::mt19937_64& rng)
+{
+  PointSet model = source.subset(uniformSubsample(source.points, kMaxScoringModelPoints, rng));
+  if (!model.hasNormals())
+    model.normals = estimateOutwardNormals(
+        model.points, kNormalRadiusPerSpacing * std::max(1e-6, neighbourSpacing(model.points, 0.5, rng)));
+  return withUnitNormals(std::move(model));
+}
+
+/// Whether the trusted normals leave their mean by more than kSpanAngleDeg
+/// often enough to say the scan shows more than one face.
+bool showsSeveralFaces(const std::vector<Eigen::Vector3d>& normals)
+{
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& n : normals)
+    mean += n;
+  if (!(mean.norm() > 0.0))
+    return false;
+  mean.normalize();
+  const double max_cos = std::cos(kSpanAngleDeg * kDegToRad);
+  int away = 0;
+  for (const Eigen::Vector3d& n : normals)
+    away += n.dot(mean) < max_cos ? 1 : 0;
+  return away >= kMinSpanFraction * normals.size();
+}
+
+/// See ViewRegistrationParams::normal_radius_per_range.
+double scanNormalRadius(const PointSet& scan, double spacing_m, const ViewRegistrationParams& view)
+{
+  std::vector<double> ranges;
+  for (const Eigen::Vector3d& p : scan.points)
+    ranges.push_back((p - view.viewpoint_m).norm());
+  return std::max({1e-6, kNormalRadiusPerSpacing * spacing_m, view.normal_radius_per_range * percentile(ranges, 0.5)});
+}
+
+/// See ViewRegistrationParams::max_relative_surface_variation.
+std::vector<int> trustedScanPoints(const PointSet& scan, const std::vector<double>& variation,
+                                   const ViewRegistrationParams& view)
+{
+  std::vector<double> finite;
+  for (std::size_t i = 0; i < scan.size(); ++i)
+    if (scan.normals[i].squaredNorm() > 0.0)
+      finite.push_back(variation[i]);
+  const double max_variation = view.max_relative_surface_variation * percentile(finite, 0.5);
+  std::vector<int> trusted;
+  for (std::size_t i = 0; i < scan.size(); ++i)
+  {
+    if (scan.normals[i].squaredNorm() == 0.0 || variation[i] > max_variation)
+      continue;
+    const Eigen::Vector3d sight = (view.viewpoint_m - scan.points[i]).normalized();
+    if (scan.normals[i].dot(sight) >= view.min_sight_cos)
+      trusted.push_back(static_cast<int>(i));
+  }
+  return trusted;
+}
+
+ViewInput prepareInput(const PointSet& source, const PointSet& target, const Super4PCSParams& params,
+                       std::mt19937_64& rng)
+{
+  const ViewRegistrationParams& view = params.view;
+  ViewInput input;
+  input.model = prepareModel(source, rng);
+  input.model_probe = input.model.subset(uniformSubsample(input.model.points, kModelProbeSize, rng));
+
+  input.scan = target.subset(uniformSubsample(target.points, view.scan_sample_size, rng));
+  const double scan_spacing_m = neighbourSpacing(input.scan.points, 0.5, rng);
+  const ViewNormals normals =
+      estimateViewNormals(input.scan.points, scanNormalRadius(input.scan, scan_spacing_m, view), view.viewpoint_m);
+  input.scan.normals = normals.normals;
+  input.trusted = trustedScanPoints(input.scan, normals.surface_variation, view);
+  const PointSet trusted_scan = input.scan.subset(input.trusted);
+  input.base_cloud = trusted_scan.subset(uniformSubsample(trusted_scan.points, params.sample_size, rng));
+  input.bases_span_faces = showsSeveralFaces(input.base_cloud.normals);
+
+  // The model sample as dense as the base cloud: a base point's counterpart
+  // is then as close in the model sample as a face registration's would be.
+  const double model_spacing_m = neighbourSpacing(input.model.points, 0.5, rng);
+  const double base_spacing_m = neighbourSpacing(input.base_cloud.points, 0.5, rng);
+  const double density_ratio = base_spacing_m > 0.0 ? model_spacing_m / base_spacing_m : 1.0;
+  // Clamped as a double: a degenerate scan (all points within a few microns)
+  // gives a ratio whose square does not fit an int.
+  const double wanted_model_samples = static_cast<double>(input.model.size()) * density_ratio * density_ratio;
+  const int model_sample_size = static_cast<int>(std::max(
+      static_cast<double>(params.sample_size), std::min(wanted_model_samples, static_cast<double>(view.model_sample_size))));
+  input.model_sample = input.model.subset(uniformSubsample(input.model.points, model_sample_size, rng));
+  const double model_sample_spacing_m = neighbourSpacing(input.model_sample.points, 0.5, rng);
+  input.match_radius_m = std::max({params.delta_m, kMatchRadiusPerSpacing * scan_spacing_m, model_spacing_m});
+  // A scan point's counterpart among the model sample is up to about half
+  // the model sample's spacing away.
+  input.pair_tolerance_m = std::max(params.delta_m, 0.5 * model_sample_spacing_m);
+  input.scan_diameter_m = approximateDiameter(input.base_cloud.points, rng);
+  input.model_diameter_m = approximateDiameter(input.model_probe.points, rng);
+  return input;
+}
+
+CongruenceTolerances tolerancesFor(const CoplanarBase& base, const ViewInput& input, const Super4PCSParams& params)
+{
+  CongruenceTolerances tolerances;
+  tolerances.distance_m = input.pair_tolerance_m;
+  tolerances.normal_rad = params.view.max_normal_difference_deg * kDegToRad;
+  tolerances.angle_rad = params.max_angle_difference_deg > 0.0
+                             ? params.max_angle_difference_deg * kDegToRad
+                             : std::atan(2.0 * input.pair_tolerance_m / std::min(base.r1_m(), base.r2_m()));
+  return tolerances;
+}
+
+/// The candidate (scan -> model) turns each base normal onto its model point's.
+bool normalsMapped(const Eigen::Isometry3d& scan_to_model, const CoplanarBase& base, const PointSet& model_sample,
+                   const CongruentSet& set, double max_angle_rad)
+{
+  const double min_cos = std::cos(max_angle_rad);
+  for (int k = 0; k < 4; ++k)
+    if ((scan_to_model.linear() * base.normals[k]).dot(model_sample.normals[set[k]]) < min_cos)
+      return false;
+  return true;
+}
+
+bool passesAcceptance(const ViewScore& score, const ViewRegistrationParams& view)
+{
+  return score.target_coverage >= view.min_target_coverage && score.model_coverage >= view.min_model_coverage &&
+         score.free_space_violation <= view.max_free_space_violation;
+}
+
+/// The distinct hypotheses of the search, best target coverage first.
+class HypothesisList
+{
+public:
+  HypothesisList(int capacity, const ModelSymmetries& symmetries, double same_offset_m)
+    : capacity_(std::max(1, capacity)), symmetries_(symmetries), same_offset_m_(same_offset_m)
+  {
+  }
+
+  /// Coverage a new candidate must exceed to be kept.
+  double floor() const
+  {
+    if (list_.empty())
+      return kMinHypothesisCoverage;
+    const double window = std::max(kMinHypothesisCoverage, list_.front().target_coverage - kHypothesisCoverageWindow);
+    return static_cast<int>(list_.size()) < capacity_ ? window : std::max(window, list_.back().target_coverage);
+  }
+
+  /// Keeps the candidate (merged with a hypothesis it repeats); returns its
+  /// index in the list, or -1 when it was not kept.
+  int offer(const Eigen::Isometry3d& pose, double coverage)
+  {
+    for (std::size_t i = 0; i < list_.size(); ++i)
+      if (samePoseModuloSymmetry(list_[i].pose, pose, symmetries_, kSameHypothesisDeg, same_offset_m_))
+      {
+        if (coverage <= list_[i].target_coverage)
+          return -1;
+        list_[i] = Hypothesis{pose, coverage, {}, false};
+        return sortFrom(static_cast<int>(i));
+      }
+    if (coverage <= floor())
+      return -1;
+    if (static_cast<int>(list_.size()) >= capacity_)
+      list_.pop_back();
+    list_.push_back(Hypothesis{pose, coverage, {}, false});
+    return sortFrom(static_cast<int>(list_.size()) - 1);
+  }
+
+  Hypothesis& at(int index) { return list_[index]; }
+  std::vector<Hypothesis>& all() { return list_; }
+
+private:
+  int sortFrom(int index)
+  {
+    while (index > 0 && list_[index - 1].target_coverage < list_[index].target_coverage)
+    {
+      std::swap(list_[index - 1], list_[index]);
+      --index;
+    }
+    return index;
+  }
+
+  int capacity_;
+  const ModelSymmetries& symmetries_;
+  double same_offset_m_;
+  std::vector<Hypothesis> list_;
+};
+
+/// The pose slid along each box axis on which the scan is shorter than the
+/// model, so that one end of the scan meets the model's end: a face whose end
+/// is out of view (or grazing) leaves the position along it to the few
+/// boundary points, and the 4-point pose may be off by more than the local
+/// fits reach.
+std::vector<Eigen::Isometry3d> slidAlternatives(const Eigen::Isometry3d& pose, const ViewInput& input,
+                                                const ModelSymmetries& symmetries)
+{
+  std::vector<Eigen::Isometry3d> slid;
+  if (!symmetries.box_like || input.trusted.empty())
+    return slid;
+  const Eigen::Isometry3d target_to_model = pose.inverse();
+  Eigen::Vector3d lower = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d upper = -lower;
+  for (int i : input.trusted)
+  {
+    const Eigen::Vector3d local =
+        symmetries.axes.transpose() * (target_to_model * input.scan.points[i] - symmetries.centre_m);
+    lower = lower.cwiseMin(local);
+    upper = upper.cwiseMax(local);
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const double half = symmetries.half_extents_m(axis);
+    for (const double shift : {lower(axis) + half, upper(axis) - half})
+    {
+      if (std::abs(shift) <= input.match_radius_m)
+        continue;
+      Eigen::Isometry3d moved = pose;
+      moved.translation() += pose.linear() * (shift * symmetries.axes.col(axis));
+      slid.push_back(moved);
+    }
+  }
+  return slid;
+}
+
+/// What the local fit of a hypothesis works on: the model sample (as dense
+/// as the scan's bases; a plane needs no more) indexed for the fit's reach,
+/// and about kFitScanPoints trusted scan points spread over the scan.
+struct FitContext
+{
+  FitContext(const ViewInput& input, double radius_m)
+    : model(input.model_sample), grid(input.model_sample.points, radius_m), radius_m(radius_m)
+  {
+    const std::size_t stride = std::max<std::size_t>(1, input.trusted.size() / kFitScanPoints);
+    for (std::size_t k = 0; k < input.trusted.size(); k += stride)
+      scan_points.push_back(input.trusted[k]);
+  }
+
+  const PointSet& model;
+  PointGrid grid;
+  double radius_m;
+  std::vector<int> scan_points;
+};
+
+/// Gives a hypothesis its best local fit and its full view score.
+Hypothesis fitAndScore(const Eigen::Isometry3d& pose, const FitContext& context, const ViewInput& input,
+                       const ViewConsistency& consistency, const Super4PCSParams& params)
+{
+  PointToPlaneParams fit;
+  fit.radius_m = context.radius_m;
+  fit.max_normal_difference_deg = params.view.max_normal_difference_deg;
+  fit.iterations = kHypothesisFitIterations;
+  fit.min_step_m = 0.02 * params.delta_m;
+  Hypothesis hypothesis;
+  hypothesis.pose = refinePointToPlane(context.model, context.grid, input.scan, context.scan_points, pose, fit);
+  hypothesis.view = consistency.evaluate(hypothesis.pose);
+  hypothesis.view_evaluated = true;
+  hypothesis.target_coverage = hypothesis.view.target_coverage;
+  return hypothesis;
+}
+
+/// Draws bases from the scan and verifies their congruent sets in the model
+/// until a pose passes the view acceptance with a high scan coverage, or the
+/// work or time budget is spent.
+std::string searchHypotheses(const ViewInput& input, const ViewConsistency& consistency, const FitContext& fit_context,
+                             const Super4PCSParams& params, SteadyClock::time_point start, std::mt19937_64& rng,
+                             HypothesisList& hypotheses, RegistrationResult& result)
+{
+  const ShellPairIndex pair_index(input.model_sample.points, input.pair_tolerance_m);
+  const CongruentSetFinder finder(input.model_sample, pair_index);
+  BaseSelectionLimits limits;
+  limits.max_diameter_m = input.scan_diameter_m;
+  limits.coplanar_tolerance_m = 0.5 * input.pair_tolerance_m;
+  limits.min_normal_spread_rad = input.bases_span_faces ? kSpanAngleDeg * kDegToRad : 0.0;
+  const double max_fit_rms_m = params.max_fit_rms_factor * input.pair_tolerance_m;
+  const ViewRegistrationParams& view = params.view;
+
+  std::string stop_reason;
+  int base_draw_failures = 0;
+  std::vector<Eigen::Vector3d> base_points(4);
+  std::vector<Eigen::Vector3d> set_points(4);
+  while (stop_reason.empty())
+  {
+    if (result.bases_tried >= params.max_bases)
+      return "all " + std::to_string(params.max_bases) + " bases tried";
+    if (secondsSince(start) >= params.max_time_s)
+      return "time budget exhausted (wall clock: the result depends on the machine's load)";
+    const std::optional<CoplanarBase> base = drawCoplanarBase(input.base_cloud, limits, rng);
+    if (!base)
+    {
+      if (++base_draw_failures >= kMaxBaseDrawFailures)
+      {
+        if (limits.min_normal_spread_rad > 0.0)
+        {
+          limits.min_normal_spread_rad = 0.0;  // no spanning base: take any
+          base_draw_failures = 0;
+          continue;
+        }
+        return "no wide coplanar 4-point base found in the scan";
+      }
+      continue;
+    }
+    base_draw_failures = 0;
+    ++result.bases_tried;
+    const CongruenceTolerances tolerances = tolerancesFor(*base, input, params);
+    for (int k = 0; k < 4; ++k)
+      base_points[k] = base->points[k];
+
+    int since_clock = 0;
+    finder.find(*base, tolerances, [&](const CongruentSet& set) {
+      if (++since_clock >= kClockStride)
+      {
+        since_clock = 0;
+        if (secondsSince(start) >= params.max_time_s)
+        {
+          stop_reason = "time budget exhausted (wall clock: the result depends on the machine's load)";
+          return false;
+        }
+      }
+      for (int k = 0; k < 4; ++k)
+        set_points[k] = input.model_sample.points[set[k]];
+      const RigidFit fit = fitRigid(base_points, set_points);
+      if (!fit.valid || fit.rms_m > max_fit_rms_m ||
+          !normalsMapped(fit.transform, *base, input.model_sample, set, tolerances.normal_rad))
+        return true;
+      if (result.candidates_verified >= view.max_candidates)
+      {
+        stop_reason = "work budget of " + std::to_string(view.max_candidates) + " candidates spent";
+        return false;
+      }
+      ++result.candidates_verified;
+      const Eigen::Isometry3d pose = fit.transform.inverse();
+      const double floor = hypotheses.floor();
+      const double coverage = consistency.targetCoverage(pose, floor, kSearchCoveragePoints);
+      if (coverage <= floor)
+        return true;
+      // Only a new leader is checked in full: the check costs as much as
+      // hundreds of quick ones.
+      const int kept = hypotheses.offer(pose, coverage);
+      if (kept != 0 || coverage < view.stop_target_coverage)
+        return true;
+      Hypothesis& hypothesis = hypotheses.at(kept);
+      const double quick_coverage = hypothesis.target_coverage;
+      hypothesis = fitAndScore(pose, fit_context, input, consistency, params);
+      hypothesis.target_coverage = std::max(quick_coverage, hypothesis.target_coverage);
+      if (passesAcceptance(hypothesis.view, view))
+      {
+        stop_reason = "a pose passed the view checks";
+        return false;
+      }
+      return true;
+    });
+  }
+  return stop_reason;
+}
+
+/// The hypothesis moved so that its model corner nearest the viewpoint lands
+/// where `reference` puts its own nearest corner: the corner a view of a box
+/// shows best, whatever the box's dimensions.
+Eigen::Isometry3d anchoredAtNearCorner(const Eigen::Isometry3d& pose, const Eigen::Isometry3d& reference,
+                                       const ModelSymmetries& symmetries, const Eigen::Vector3d& viewpoint)
+{
+  auto nearest = [&](const Eigen::Isometry3d& p) {
+    Eigen::Vector3d best = Eigen::Vector3d::Zero();
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& corner : symmetries.corners())
+    {
+      const Eigen::Vector3d placed = p * corner;
+      const double distance = (placed - viewpoint).norm();
+      if (distance < best_distance)
+      {
+        best_distance = distance;
+        best = placed;
+      }
+    }
+    return best;
+  };
+  Eigen::Isometry3d moved = pose;
+  moved.translation() += nearest(reference) - nearest(pose);
+  return moved;
+}
+
+/// The polish of the face mode with the model's faces turned towards the
+/// viewpoint as the source.
+Eigen::Isometry3d polishOnVisibleFaces(const ViewInput& input, const Eigen::Isometry3d& pose,
+                                       const Super4PCSParams& params, SteadyClock::time_point start,
+                                       std::mt19937_64& rng)
+{
+  std::vector<int> facing;
+  for (std::size_t i = 0; i < input.model.size(); ++i)
+  {
+    const Eigen::Vector3d p = pose * input.model.points[i];
+    if ((pose.linear() * input.model.normals[i]).dot((params.view.viewpoint_m - p).normalized()) >= kPolishVisibleCos)
+      facing.push_back(static_cast<int>(i));
+  }
+  if (facing.size() < 4)
+    return pose;
+  const PointSet visible = input.model.subset(facing);
+  // The scan without what faces away from the viewpoint (grazing strips and
+  // flying-pixel curtains, which the polish's trimming does not always keep
+  // out); edges stay, the boundary stage needs them.
+  std::vector<int> kept;
+  for (std::size_t i = 0; i < input.scan.size(); ++i)
+  {
+    const Eigen::Vector3d sight = (params.view.viewpoint_m - input.scan.points[i]).normalized();
+    if (input.scan.normals[i].dot(sight) >= params.view.min_sight_cos)
+      kept.push_back(static_cast<int>(i));
+  }
+  if (kept.size() < 4)
+    return pose;
+  PointSet polish_target = input.scan.subset(kept);
+  polish_target.normals.clear();
+  SearchScales scales;
+  // The hypothesis fit leaves the in-plane pose of a single face as loose as
+  // the 4-point pose (a few pair tolerances at its far ends): the polish must
+  // reach that far.
+  scales.pair_tolerance_m = kPolishReachPerPairTolerance * input.pair_tolerance_m;
+  scales.lcp_radius_m = input.match_radius_m;
+  scales.source_diameter_m = approximateDiameter(visible.points, rng);
+  return polishWithIcp(visible, polish_target, pose, scales, params, start, rng);
+}
+}  // namespace
+
+bool isMultiFaceModel(const PointSet& source)
+{
+  if (source.size() < 4)
+    return false;
+  if (source.hasNormals())
+  {
+    const Eigen::Vector3d first = source.normals.front().normalized();
+    const double max_cos = std::cos(kSpanAngleDeg * kDegToRad);
+    for (const Eigen::Vector3d& normal : source.normals)
+      if (normal.normalized().dot(first) < max_cos)
+        return true;
+    return false;
+  }
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : source.points)
+    mean += p;
+  mean /= static_cast<double>(source.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& p : source.points)
+    covariance += (p - mean) * (p - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance / static_cast<double>(source.size()));
+  // Thicker than 5 % of its length: not one flat face.
+  return std::sqrt(std::max(0.0, solver.eigenvalues()(0))) > 0.05 * std::sqrt(solver.eigenvalues()(2));
+}
+
+RegistrationResult alignWholeView(const PointSet& source, const PointSet& target, const Super4PCSParams& params)
+{
+  const SteadyClock::time_point start = SteadyClock::now();
+  std::mt19937_64 rng(params.seed);
+  const ViewRegistrationParams& view = params.view;
+  const ViewInput input = prepareInput(source, target, params, rng);
+  RegistrationResult result;
+  result.view_checked = true;
+  if (input.base_cloud.size() < 4)
+  {
+    result.reason = "fewer than 4 scan points with trustworthy normals";
+    result.elapsed_s = secondsSince(start);
+    return result;
+  }
+
+  ViewConsistencyParams check;
+  check.viewpoint_m = view.viewpoint_m;
+  check.match_radius_m = input.match_radius_m;
+  check.max_normal_difference_deg = view.max_normal_difference_deg;
+  check.min_visible_cos = view.min_visible_cos;
+  check.free_space_margin_m = view.free_space_margin_m;
+  const ViewConsistency consistency(input.model, input.model_probe, input.scan, input.trusted, check);
+  const ModelSymmetries symmetries =
+      findModelSymmetries(input.model, consistency.modelGrid(), input.model_probe, input.match_radius_m);
+
+  const double search_cpu_start_s = threadCpuSeconds();
+  HypothesisList hypotheses(view.kept_hypotheses, symmetries, kSameHypothesisOffsetM);
+  const FitContext fit_context(input, kHypothesisFitRadiusPerMatchRadius * input.match_radius_m);
+  result.reason = searchHypotheses(input, consistency, fit_context, params, start, rng, hypotheses, result);
+  result.search_cpu_s = threadCpuSeconds() - search_cpu_start_s;
+  if (hypotheses.all().empty())
+  {
+    result.reason += "; no pose covers " + formatScore(kMinHypothesisCoverage) + " of the scan";
+    result.elapsed_s = secondsSince(start);
+    return result;
+  }
+
+  const double refine_cpu_start_s = threadCpuSeconds();
+  // Every hypothesis of the search, and every near-symmetric alternative of
+  // the best (centred as the best, and moved to its near corner), fitted and
+  // scored alike.
+  std::vector<Hypothesis> scored;
+  for (const Hypothesis& hypothesis : hypotheses.all())
+    scored.push_back(fitAndScore(hypothesis.pose, fit_context, input, consistency, params));
+  auto by_score = [](const Hypothesis& a, const Hypothesis& b) { return a.view.combined() > b.view.combined(); };
+  std::stable_sort(scored.begin(), scored.end(), by_score);
+  const Eigen::Isometry3d leader = scored.front().pose;
+  std::vector<Eigen::Isometry3d> alternatives = slidAlternatives(leader, input, symmetries);
+  for (const Eigen::Isometry3d& alternative : symmetries.alternatives)
+  {
+    const Eigen::Isometry3d turned = leader * alternative;
+    alternatives.push_back(turned);
+    alternatives.push_back(anchoredAtNearCorner(turned, leader, symmetries, view.viewpoint_m));
+  }
+  for (const Eigen::Isometry3d& alternative : alternatives)
+    scored.push_back(fitAndScore(alternative, fit_context, input, consistency, params));
+  // The alternatives' own slides: a near-symmetric pose of a box whose
+  // dimensions differ sits best against one end of the scan.
+  std::stable_sort(scored.begin(), scored.end(), by_score);
+  for (const Eigen::Isometry3d& alternative : slidAlternatives(scored.front().pose, input, symmetries))
+    scored.push_back(fitAndScore(alternative, fit_context, input, consistency, params));
+  std::stable_sort(scored.begin(), scored.end(), by_score);
+  Hypothesis best = scored.front();
+  double second_best = 0.0;
+  const double same_offset_m = kSameHypothesisOffsetM;
+  for (std::size_t i = 1; i < scored.size(); ++i)
+    if (!samePoseModuloSymmetry(best.pose, scored[i].pose, symmetries, kSameHypothesisDeg, same_offset_m))
+    {
+      second_best = scored[i].view.combined();
+      break;
+    }
+
+  if (params.refine_iterations > 0)
+  {
+    const Eigen::Isometry3d polished =
+        polishOnVisibleFaces(input, best.pose, params, start, rng);
+    const ViewScore polished_score = consistency.evaluate(polished);
+    if (polished_score.combined() >= best.view.combined() - kMaxScoreDropByPolish)
+    {
+      best.pose = polished;
+      best.view = polished_score;
+    }
+  }
+  result.refine_cpu_s = threadCpuSeconds() - refine_cpu_start_s;
+
+  result.source_to_target = best.pose;
+  result.view = best.view;
+  result.lcp_score = best.view.target_coverage;
+  result.second_best_score = second_best;
+  result.confidence = std::max(0.0, best.view.combined() - second_best);
+  result.true_symmetries = static_cast<int>(symmetries.symmetries.size());
+
+  std::vector<std::string> doubts;
+  if (best.view.target_coverage < view.min_target_coverage)
+    doubts.push_back("the pose explains only " + formatScore(best.view.target_coverage) + " of the scan (needs " +
+                     formatScore(view.min_target_coverage) + ")");
+  if (best.view.model_coverage < view.min_model_coverage)
+    doubts.push_back("the scan shows only " + formatScore(best.view.model_coverage) +
+                     " of the model faces the pose turns towards the camera (needs " +
+                     formatScore(view.min_model_coverage) + ")");
+  if (best.view.free_space_violation > view.max_free_space_violation)
+    doubts.push_back("the pose puts " + formatScore(best.view.free_space_violation) +
+                     " of its visible surface in front of what the camera saw (allowed " +
+                     formatScore(view.max_free_space_violation) + ")");
+  if (result.confidence < view.min_confidence)
+    doubts.push_back("another pose scores nearly as well (margin " + formatScore(result.confidence) + ", needs " +
+                     formatScore(view.min_confidence) + ")");
+  result.success = doubts.empty();
+  for (const std::string& doubt : doubts)
+    result.reason += "; not sure: " + doubt;
+  result.elapsed_s = secondsSince(start);
+  return result;
+}
+}  // namespace registration
+}  // namespace brick_pose

@@ -1,0 +1,104 @@
+// rostest: on a static pile of at least six bricks, every tf frame
+// brick_<type>_<id> stays attached to the same ground-truth brick, and every
+// ground-truth brick keeps its frame name, over 300 consecutive frames.
+
+#include <map>
+#include <mutex>
+
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+
+#include "brick_pose/BrickDetectionArray.h"
+#include "brick_pose/BrickTruthArray.h"
+#include "brick_pose/ros/conversions.h"
+
+namespace
+{
+using brick_pose::ros_conversions::fromPose;
+
+constexpr int kFrames = 300;
+constexpr std::size_t kMinBricks = 6;
+
+/// The ground-truth brick whose top face holds a detection's centre (within
+/// 3 cm of its plane, inside the face); -1 when none does.
+int truthBrickOf(const brick_pose::BrickTruthArray& truth, const brick_pose::BrickDetection& detection)
+{
+  const Eigen::Vector3d centre = fromPose(detection.pose.pose).translation();
+  for (const brick_pose::BrickTruth& brick : truth.bricks)
+  {
+    const Eigen::Vector3d in_brick = fromPose(brick.pose).inverse() * centre;
+    if (brick.type == detection.type && std::abs(in_brick.z()) < 0.03 &&
+        std::abs(in_brick.x()) < 0.5 * brick.dimensions.x && std::abs(in_brick.y()) < 0.5 * brick.dimensions.y)
+      return brick.instance_id;
+  }
+  return -1;
+}
+
+class IdentityWatch
+{
+public:
+  void onTruth(const brick_pose::BrickTruthArrayConstPtr& truth)
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    truth_by_stamp_[truth->header.stamp] = truth;
+    while (truth_by_stamp_.size() > 200) truth_by_stamp_.erase(truth_by_stamp_.begin());
+  }
+
+  void onDetections(const brick_pose::BrickDetectionArrayConstPtr& detections)
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto truth = truth_by_stamp_.find(detections->header.stamp);
+    if (truth == truth_by_stamp_.end() || frames_ >= kFrames) return;
+    ++frames_;
+    min_bricks_ = std::min(min_bricks_, detections->detections.size());
+    for (const brick_pose::BrickDetection& detection : detections->detections)
+    {
+      const int brick = truthBrickOf(*truth->second, detection);
+      if (brick < 0)
+      {
+        ++unmatched_;
+        continue;
+      }
+      const auto named = truth_of_frame_.emplace(detection.frame, brick);
+      if (!named.second && named.first->second != brick) ++frame_swaps_;
+      const auto kept = frame_of_truth_.emplace(brick, detection.frame);
+      if (!kept.second && kept.first->second != detection.frame) ++renamed_;
+    }
+  }
+
+  int frames() const { std::lock_guard<std::mutex> lock(mutex_); return frames_; }
+
+  mutable std::mutex mutex_;
+  std::map<ros::Time, brick_pose::BrickTruthArrayConstPtr> truth_by_stamp_;
+  std::map<std::string, int> truth_of_frame_;
+  std::map<int, std::string> frame_of_truth_;
+  int frames_ = 0, frame_swaps_ = 0, renamed_ = 0, unmatched_ = 0;
+  std::size_t min_bricks_ = 1000;
+};
+
+TEST(StableIds, FramesStayWithTheirBricksFor300Frames)
+{
+  ros::NodeHandle node;
+  IdentityWatch watch;
+  ros::Subscriber truth = node.subscribe("/camera/synthetic_camera/ground_truth", 50, &IdentityWatch::onTruth, &watch);
+  ros::Subscriber detections = node.subscribe("/brick_pose/detections", 50, &IdentityWatch::onDetections, &watch);
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(200.0);
+  while (watch.frames() < kFrames && ros::WallTime::now() < deadline) ros::WallDuration(0.1).sleep();
+  std::lock_guard<std::mutex> lock(watch.mutex_);
+  ASSERT_EQ(watch.frames_, kFrames) << "frames with detections and their ground truth";
+  EXPECT_GE(watch.min_bricks_, kMinBricks) << "the pile must show at least six bricks in every frame";
+  EXPECT_EQ(watch.frame_swaps_, 0) << "a frame name moved to another brick";
+  EXPECT_EQ(watch.renamed_, 0) << "a brick got another frame name";
+  EXPECT_EQ(watch.unmatched_, 0) << "detections on no ground-truth top face";
+  EXPECT_GE(watch.truth_of_frame_.size(), kMinBricks);
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  ::testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "stable_ids_test");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}
