@@ -3,6 +3,7 @@
 // filtration of one RgbdFrame, returning brick candidates, per-stage timings
 // and the reasons segments were dropped.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,7 +22,7 @@ namespace brick_pose
 {
 enum class SegmentationMode
 {
-  kHsv,            ///< Plate colour per catalogue type (default, fast).
+  kHsv,            ///< Plate colour per catalogue type (default, fast); types without one colour-free.
   kRegionGrowing,  ///< Colour-free planar faces classified by size (the paper's PCL region growing; slow).
   kColourFree,     ///< Colour-free planar faces classified by size (cell clustering; real time).
 };
@@ -114,8 +115,11 @@ public:
   const FrontEndParams& params() const { return params_; }
 
 private:
+  /// The plate-colour segments, then (when the catalogue has types without a
+  /// plate colour) the colour-free segments of the pixels left.
+  std::vector<Segment> hsvSegments(const RgbdFrame& frame) const;
   /// The colour-free segments, without the supporting plane when so configured.
-  std::vector<Segment> colourFreeSegments(const RgbdFrame& frame) const;
+  std::vector<Segment> colourFreeSegments(const RgbdFrame& frame, const cv::Mat& excluded = cv::Mat()) const;
   /// Joins pieces of one face (see FrontEndParams::merge_face_pieces).
   void mergeFacePieces(const RgbdFrame& frame, FrontEndResult& result) const;
   /// Drops (as rejections) candidates below RoiFilterParams' minimum visible
@@ -128,5 +132,8 @@ private:
   RegionGrowingSegmenter region_growing_segmenter_;
   ColourFreeSegmenter colour_free_segmenter_;
   RoiFilter roi_filter_;
+  /// Mode hsv with types without a plate colour: ROI filtration of the
+  /// colour-free segments against those types only.
+  std::optional<RoiFilter> uncoloured_roi_filter_;
 };
 }  // namespace brick_pose

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
+#include <optional>
 #include <sstream>
 
 #include "brick_pose/common/errors.h"
@@ -61,6 +63,25 @@ const BrickCatalogue& nonEmpty(const BrickCatalogue& catalogue)
 {
   if (catalogue.empty()) throw ConfigError("front end: the brick catalogue is empty");
   return catalogue;
+}
+
+/// The types of `catalogue` with no plate colour (plain boxes): in mode hsv
+/// they are found by colour-free segmentation instead.
+std::optional<BrickCatalogue> uncolouredTypes(const BrickCatalogue& catalogue)
+{
+  std::vector<BrickType> types;
+  for (const BrickType& type : catalogue.types())
+    if (!type.hasPlateColour()) types.push_back(type);
+  if (types.empty()) return std::nullopt;
+  return BrickCatalogue(std::move(types));
+}
+
+/// Pixels the HSV segments took, for the colour-free pass to leave alone.
+cv::Mat coveredPixels(const RgbdFrame& frame, const std::vector<Segment>& segments)
+{
+  cv::Mat covered = cv::Mat::zeros(frame.height_px(), frame.width_px(), CV_8UC1);
+  for (const Segment& segment : segments) covered(segment.bounding_box_px).setTo(255, segment.mask);
+  return covered;
 }
 }  // namespace
 
@@ -127,22 +148,36 @@ FrontEnd::FrontEnd(const BrickCatalogue& catalogue, const FrontEndParams& params
     colour_free_segmenter_(params.colour_free),
     roi_filter_(catalogue, pieceFilterParams(params), params.cloud)
 {
+  if (params.mode == SegmentationMode::kHsv)
+    if (const auto uncoloured = uncolouredTypes(catalogue_))
+      uncoloured_roi_filter_.emplace(*uncoloured, pieceFilterParams(params), params.cloud);
 }
 
 std::vector<Segment> FrontEnd::segment(const RgbdFrame& frame) const
 {
   switch (params_.mode)
   {
-    case SegmentationMode::kHsv: return hsv_segmenter_.segment(frame, catalogue_);
+    case SegmentationMode::kHsv: return hsvSegments(frame);
     case SegmentationMode::kRegionGrowing: return region_growing_segmenter_.segment(frame);
     case SegmentationMode::kColourFree: return colourFreeSegments(frame);
   }
   return {};
 }
 
-std::vector<Segment> FrontEnd::colourFreeSegments(const RgbdFrame& frame) const
+std::vector<Segment> FrontEnd::hsvSegments(const RgbdFrame& frame) const
 {
-  PlanarSegments planar = colour_free_segmenter_.segmentPlanes(frame);
+  std::vector<Segment> segments = hsv_segmenter_.segment(frame, catalogue_);
+  if (!uncoloured_roi_filter_) return segments;
+  // Types without a plate colour: colour-free segments (their type_name is
+  // empty) of the pixels no plate colour took.
+  std::vector<Segment> planar = colourFreeSegments(frame, coveredPixels(frame, segments));
+  std::move(planar.begin(), planar.end(), std::back_inserter(segments));
+  return segments;
+}
+
+std::vector<Segment> FrontEnd::colourFreeSegments(const RgbdFrame& frame, const cv::Mat& excluded) const
+{
+  PlanarSegments planar = colour_free_segmenter_.segmentPlanes(frame, excluded);
   if (!params_.skip_supporting_plane) return std::move(planar.segments);
   std::vector<Segment> segments;
   segments.reserve(planar.segments.size());
@@ -158,7 +193,11 @@ void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>
   const double cloud_ms_before = result.timings.cloud.total();
   for (const Segment& segment : segments)
   {
-    RoiOutcome outcome = roi_filter_.filterSplitting(frame, segment, &result.timings.cloud);
+    // In mode hsv a segment without a type is a colour-free one, for the
+    // types without a plate colour only.
+    const bool uncoloured_only = uncoloured_roi_filter_ && segment.type_name.empty();
+    const RoiFilter& filter = uncoloured_only ? *uncoloured_roi_filter_ : roi_filter_;
+    RoiOutcome outcome = filter.filterSplitting(frame, segment, &result.timings.cloud);
     std::move(outcome.candidates.begin(), outcome.candidates.end(), std::back_inserter(result.candidates));
     for (std::string& reason : outcome.rejections)
     {
