@@ -69,10 +69,50 @@ struct Node
 {
   PlaneNode stats;
   double fitted_count = 0.0;  // points when the plane was last fitted
-  std::vector<int> neighbours;
+  // The node's neighbour list: a chain of links in NeighbourLinks (-1: empty).
+  int first_link = -1, last_link = -1;
   int cells = 1;
   int version = 0;
   NodeState state = NodeState::kNone;
+};
+
+/// Every node's neighbour list in one pool of singly linked entries: a
+/// merge appends the absorbed node's chain in constant time, and a frame
+/// needs no allocation once the pool has grown to the grid (with a vector
+/// per node, the lists of the nodes that happen to grow large differ from
+/// frame to frame, and their reallocations cost more than the clustering).
+struct NeighbourLinks
+{
+  std::vector<int> node;  // the neighbour (possibly merged since: resolve with findRoot)
+  std::vector<int> next;  // following link of the chain, -1 at its end
+
+  void clear()
+  {
+    node.clear();
+    next.clear();
+  }
+  void append(Node& owner, int neighbour)
+  {
+    const int link = static_cast<int>(node.size());
+    node.push_back(neighbour);
+    next.push_back(-1);
+    if (owner.last_link < 0)
+      owner.first_link = link;
+    else
+      next[owner.last_link] = link;
+    owner.last_link = link;
+  }
+  /// Moves the chain of `from` to the end of the chain of `to`.
+  void splice(Node& to, Node& from)
+  {
+    if (from.first_link < 0) return;
+    if (to.last_link < 0)
+      to.first_link = from.first_link;
+    else
+      next[to.last_link] = from.first_link;
+    to.last_link = from.last_link;
+    from.first_link = from.last_link = -1;
+  }
 };
 
 struct HeapEntry
@@ -200,11 +240,14 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
                                    const DepthNoise& noise) const
 {
   const int cols = grid.cols(), rows = grid.rows(), count = grid.size();
-  // Working storage kept between frames: the nodes' neighbour lists keep
-  // their capacity, which saves thousands of small allocations per frame.
+  // Working storage kept between frames (thread_local: the segmenter is
+  // const and may run in several threads).
   thread_local std::vector<Node> nodes;
   thread_local std::vector<int> parent;
   thread_local std::vector<HeapEntry> heap;  // a min-heap on the MSE
+  thread_local NeighbourLinks links;
+  thread_local std::vector<int> neighbours;  // the current node's, resolved
+  links.clear();
   if (static_cast<int>(nodes.size()) < count) nodes.resize(static_cast<std::size_t>(count));
   parent.resize(static_cast<std::size_t>(count));
   heap.clear();
@@ -216,7 +259,7 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
   {
     parent[i] = i;
     Node& node = nodes[i];
-    node.neighbours.clear();
+    node.first_link = node.last_link = -1;
     node.cells = 1;
     node.version = 0;
     node.state = NodeState::kNone;
@@ -230,7 +273,7 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
     if (nodes[i].state != NodeState::kActive) continue;
     const int col = i % cols, row = i / cols;
     auto link = [&](int other) {
-      if (nodes[other].state == NodeState::kActive) nodes[i].neighbours.push_back(other);
+      if (nodes[other].state == NodeState::kActive) links.append(nodes[i], other);
     };
     if (col > 0) link(i - 1);
     if (col + 1 < cols) link(i + 1);
@@ -258,23 +301,33 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
     // grows up to it later.
     // (Deduplicated with a stamp per node rather than by sorting: a large
     // plane's border holds hundreds of ids and it is taken many times.)
+    // The chain is rewritten in place: duplicates unlinked, ids resolved.
     ++stamp;
-    std::size_t kept = 0;
-    for (const int neighbour : node.neighbours)
+    neighbours.clear();
+    for (int link = node.first_link, previous = -1; link >= 0; link = links.next[link])
     {
-      const int root = findRoot(parent, neighbour);
-      if (root == entry.node || seen[root] == stamp) continue;
+      const int root = findRoot(parent, links.node[link]);
+      if (root == entry.node || seen[root] == stamp)
+      {
+        if (previous < 0)
+          node.first_link = links.next[link];
+        else
+          links.next[previous] = links.next[link];
+        if (node.last_link == link) node.last_link = previous;
+        continue;
+      }
       seen[root] = stamp;
-      node.neighbours[kept++] = root;
+      links.node[link] = root;
+      neighbours.push_back(root);
+      previous = link;
     }
-    node.neighbours.resize(kept);
 
     // Every compatible neighbour is absorbed, best (smallest merged MSE)
     // first and each re-tested against the grown node: one pop per ring of
     // growth rather than one per cell keeps a large plane's repeated scans
     // of its border affordable.
     candidates.clear();
-    for (const int neighbour : node.neighbours)
+    for (const int neighbour : neighbours)
     {
       double merged_mse_m2 = 0.0;
       if (compatible(node.stats, nodes[neighbour].stats, noise, merged_mse_m2))
@@ -301,8 +354,7 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
       other.state = NodeState::kMerged;
       node.stats = PlaneNode(merged, merged_plane, noise);
       node.cells += other.cells;
-      node.neighbours.insert(node.neighbours.end(), other.neighbours.begin(), other.neighbours.end());
-      other.neighbours.clear();
+      links.splice(node, other);
       ++absorbed;
     }
     if (absorbed == 0)
