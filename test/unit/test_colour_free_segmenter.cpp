@@ -188,6 +188,26 @@ TEST(ColourFreeSegmenter, RaisedFaceAndGroundAreTwoSegmentsWithExactBorders)
   for (const Segment& segment : segments) expectConsistent(segment, 640);
 }
 
+TEST(ColourFreeSegmenter, SupportingPlaneIsMarkedAndLeftOutOnRequest)
+{
+  const PinholeCamera camera = vga();
+  const cv::Rect face(200, 150, 220, 130);
+  const RgbdFrame frame = renderFrame(
+      camera, [&](int u, int v) { return face.contains({u, v}) ? 0.75 : 1.0; }, 0.0015, 3);
+  const ColourFreeSegmenter segmenter;
+  const PlanarSegments all = segmenter.segmentPlanes(frame);
+  ASSERT_EQ(all.segments.size(), 2u);
+  ASSERT_EQ(all.supporting.size(), 2u);
+  EXPECT_TRUE(all.supporting[0]) << "the ground (largest) carries the face";
+  EXPECT_FALSE(all.supporting[1]);
+
+  const PlanarSegments without = segmenter.segmentPlanes(frame, cv::Mat(), nullptr, false);
+  ASSERT_EQ(without.segments.size(), 1u);
+  EXPECT_FALSE(without.supporting[0]);
+  EXPECT_EQ(without.segments[0].bounding_box_px, all.segments[1].bounding_box_px);
+  EXPECT_EQ(without.segments[0].pixel_indices, all.segments[1].pixel_indices);
+}
+
 TEST(ColourFreeSegmenter, TwoFacesAtNinetyDegreesAreKeptApartAtTheCrease)
 {
   // A roof: two planes at 90 degrees meeting in a vertical ridge line at

@@ -102,9 +102,11 @@ public:
   std::vector<Segment> segment(const RgbdFrame& frame, const cv::Mat& excluded = cv::Mat(),
                                ColourFreeTimings* timings = nullptr) const;
 
-  /// The same segments with their planes and the supporting plane marked.
+  /// The same segments with their planes and the supporting plane marked;
+  /// without `with_supporting`, the supporting plane's segments are left
+  /// out (not built: they are most of the image).
   PlanarSegments segmentPlanes(const RgbdFrame& frame, const cv::Mat& excluded = cv::Mat(),
-                               ColourFreeTimings* timings = nullptr) const;
+                               ColourFreeTimings* timings = nullptr, bool with_supporting = true) const;
 
   /// The planar region of each pixel (CV_32SC1, -1 none) before the
   /// regions are cut into connected segments, for tests and tools.

@@ -177,13 +177,7 @@ std::vector<Segment> FrontEnd::hsvSegments(const RgbdFrame& frame) const
 
 std::vector<Segment> FrontEnd::colourFreeSegments(const RgbdFrame& frame, const cv::Mat& excluded) const
 {
-  PlanarSegments planar = colour_free_segmenter_.segmentPlanes(frame, excluded);
-  if (!params_.skip_supporting_plane) return std::move(planar.segments);
-  std::vector<Segment> segments;
-  segments.reserve(planar.segments.size());
-  for (std::size_t k = 0; k < planar.segments.size(); ++k)
-    if (!planar.supporting[k]) segments.push_back(std::move(planar.segments[k]));
-  return segments;
+  return colour_free_segmenter_.segmentPlanes(frame, excluded, nullptr, !params_.skip_supporting_plane).segments;
 }
 
 void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>& segments,

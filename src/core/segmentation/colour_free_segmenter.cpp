@@ -144,7 +144,7 @@ std::vector<Segment> ColourFreeSegmenter::segment(const RgbdFrame& frame, const 
 }
 
 PlanarSegments ColourFreeSegmenter::segmentPlanes(const RgbdFrame& frame, const cv::Mat& excluded,
-                                                  ColourFreeTimings* timings) const
+                                                  ColourFreeTimings* timings, bool with_supporting) const
 {
   PlanarSegments result;
   // No face fits an image smaller than the smallest segment.
@@ -156,17 +156,23 @@ PlanarSegments ColourFreeSegmenter::segmentPlanes(const RgbdFrame& frame, const 
   thread_local cv::Mat labels;
   const CellPlanes planes = labelPlanes(frame, excluded, labels, t);
   const StageClock clock;
-  std::vector<int> segment_regions;
-  result.segments = segmentsFromLabels(labels, planes.regions, params_.min_area_px, params_.max_gap_px, &segment_regions);
-
-  // Plane and size of each region.
+  // Plane of each region; its size (the area of its segments) comes from
+  // the segment extraction, which then leaves out the supporting plane's
+  // segments when they are not wanted.
   std::vector<PlaneMoments> region_moments(static_cast<std::size_t>(planes.region_count));
   for (std::size_t i = 0; i < planes.planes.size(); ++i) region_moments[planes.regions[i]] += planes.moments[i];
   std::vector<MomentPlane> region_planes(region_moments.size());
   for (std::size_t r = 0; r < region_moments.size(); ++r) region_planes[r] = fitMomentPlane(region_moments[r]);
-  std::vector<int> region_area(region_moments.size(), 0);
-  for (std::size_t k = 0; k < result.segments.size(); ++k) region_area[segment_regions[k]] += result.segments[k].area_px;
-  const std::vector<bool> supporting = supportingRegions(region_planes, region_area, frame.width_px() * frame.height_px());
+  std::vector<bool> supporting(region_moments.size(), false);
+  const RegionDropper findSupporting = [&](const std::vector<int>& region_area_px) {
+    std::vector<int> area_px(region_moments.size(), 0);
+    std::copy_n(region_area_px.begin(), std::min(region_area_px.size(), area_px.size()), area_px.begin());
+    supporting = supportingRegions(region_planes, area_px, frame.width_px() * frame.height_px());
+    return with_supporting ? std::vector<bool>() : supporting;
+  };
+  std::vector<int> segment_regions;
+  result.segments = segmentsFromLabels(labels, planes.regions, params_.min_area_px, params_.max_gap_px,
+                                       &segment_regions, findSupporting);
 
   for (std::size_t k = 0; k < result.segments.size(); ++k)
   {

@@ -58,7 +58,8 @@ void appendRowRuns(const int* row, int v, int width, const std::vector<int>& reg
 }  // namespace
 
 std::vector<Segment> segmentsFromLabels(const cv::Mat& labels, const std::vector<int>& region_of_label,
-                                        int min_area_px, int max_gap_px, std::vector<int>* segment_regions)
+                                        int min_area_px, int max_gap_px, std::vector<int>* segment_regions,
+                                        const RegionDropper& dropped_regions)
 {
   CV_Assert(labels.type() == CV_32SC1);
   const int width = labels.cols, height = labels.rows;
@@ -118,9 +119,22 @@ std::vector<Segment> segmentsFromLabels(const cv::Mat& labels, const std::vector
   }
   // Segments are built in place: a vector of them that grows would copy
   // them (cv::Mat's move may throw), losing the reserved capacity.
+  std::vector<bool> dropped;
+  if (dropped_regions)
+  {
+    std::vector<int> region_area_px(region_of_label.empty()
+                                        ? 0
+                                        : static_cast<std::size_t>(*std::max_element(region_of_label.begin(),
+                                                                                     region_of_label.end())) + 1,
+                                    0);
+    for (const Part& part : parts)
+      if (part.area >= min_area_px) region_area_px[part.region] += part.area;
+    dropped = dropped_regions(region_area_px);
+  }
+  auto isDropped = [&](int region) { return region < static_cast<int>(dropped.size()) && dropped[region]; };
   int segment_count = 0;
   for (Part& part : parts)
-    if (part.area >= min_area_px) part.segment = segment_count++;
+    if (part.area >= min_area_px && !isDropped(part.region)) part.segment = segment_count++;
   std::vector<Segment> segments(static_cast<std::size_t>(segment_count));
   for (const Part& part : parts)
   {
