@@ -193,6 +193,58 @@ TEST(FrontEnd, RegionGrowingModeClassifiesByDimensions)
   EXPECT_FALSE(result.rejections.empty()) << "the background plane is a segment too, and too large";
 }
 
+/// The MBZIRC bricks and, optionally, a plain 0.4 x 0.3 m box with no plate colour.
+BrickCatalogue bricksAndBox(bool with_bricks)
+{
+  std::vector<BrickType> types;
+  if (with_bricks) types = BrickCatalogue::mbzirc2020().types();
+  BrickType box;
+  box.name = "box";
+  box.length_m = 0.4;
+  box.width_m = 0.3;
+  box.height_m = 0.2;
+  types.push_back(box);
+  return BrickCatalogue(types);
+}
+
+test::PlateScene plainBoxScene()
+{
+  test::PlateScene scene = d415Scene();
+  scene.length_m = 0.4;
+  scene.width_m = 0.3;
+  scene.plate_rgb = scene.background_rgb;  // nothing to threshold
+  return scene;
+}
+
+TEST(FrontEnd, ColourFreeModeWorksWithACatalogueWithoutPlateColours)
+{
+  FrontEndParams params;
+  params.mode = SegmentationMode::kColourFree;
+  const FrontEndResult result = FrontEnd(bricksAndBox(false), params).process(plainBoxScene().frame());
+  ASSERT_EQ(result.candidates.size(), 1u);
+  EXPECT_EQ(result.candidates[0].type_name, "box");
+  EXPECT_NEAR(result.candidates[0].length_m, 0.4, 0.01);
+  EXPECT_NEAR(result.candidates[0].width_m, 0.3, 0.01);
+}
+
+TEST(FrontEnd, HsvModeSegmentsTypesWithoutAPlateColourWithoutColour)
+{
+  const FrontEnd front_end(bricksAndBox(true));  // mode hsv
+  const FrontEndResult box = front_end.process(plainBoxScene().frame());
+  ASSERT_EQ(box.candidates.size(), 1u);
+  EXPECT_EQ(box.candidates[0].type_name, "box");
+  EXPECT_NEAR(box.candidates[0].length_m, 0.4, 0.01);
+
+  // A green plate is found by its colour once, not a second time by the
+  // colour-free pass (which may only answer "box").
+  const FrontEndResult green = front_end.process(d415Scene().frame());
+  ASSERT_EQ(green.candidates.size(), 1u);
+  EXPECT_EQ(green.candidates[0].type_name, "green");
+
+  // Without the box type, the uncoloured plate is nothing in mode hsv.
+  EXPECT_TRUE(FrontEnd(BrickCatalogue::mbzirc2020()).process(plainBoxScene().frame()).candidates.empty());
+}
+
 TEST(FrontEnd, ModeNamesAndConfigErrors)
 {
   EXPECT_EQ(parseSegmentationMode("hsv"), SegmentationMode::kHsv);

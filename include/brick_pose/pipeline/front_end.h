@@ -3,6 +3,7 @@
 // filtration of one RgbdFrame, returning brick candidates, per-stage timings
 // and the reasons segments were dropped.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "brick_pose/roi/brick_candidate.h"
 #include "brick_pose/roi/roi_filter.h"
 #include "brick_pose/roi/up_direction.h"
+#include "brick_pose/segmentation/colour_free_segmenter.h"
 #include "brick_pose/segmentation/hsv_segmenter.h"
 #include "brick_pose/segmentation/region_growing_segmenter.h"
 
@@ -21,11 +23,12 @@ namespace brick_pose
 {
 enum class SegmentationMode
 {
-  kHsv,            ///< Plate colour per catalogue type (default, fast).
-  kRegionGrowing,  ///< Colour-free planar faces classified by size.
+  kHsv,            ///< Plate colour per catalogue type (default, fast); types without one colour-free.
+  kRegionGrowing,  ///< Colour-free planar faces classified by size (the paper's PCL region growing; slow).
+  kColourFree,     ///< Colour-free planar faces classified by size (cell clustering; real time).
 };
 
-/// "hsv" or "region_growing"; throws ConfigError for anything else.
+/// "hsv", "region_growing" or "colour_free"; throws ConfigError for anything else.
 SegmentationMode parseSegmentationMode(const std::string& name);
 std::string toString(SegmentationMode mode);
 
@@ -34,6 +37,12 @@ struct FrontEndParams
   SegmentationMode mode = SegmentationMode::kHsv;
   HsvSegmenterParams hsv;
   RegionGrowingParams region_growing;
+  ColourFreeParams colour_free;
+  /// colour_free mode: the supporting plane (ground, table; see
+  /// PlanarSegments) is not passed to ROI filtration. It is no brick, and
+  /// measuring and splitting a segment of most of the image costs ten times
+  /// the rest of the front end.
+  bool skip_supporting_plane = true;
   /// Applied to each segment's points, not to the whole frame. Defaults
   /// keep the front end fast: only the depth crop is on. Large segments are
   /// already thinned in the image (RoiFilterParams::max_points), the robust
@@ -115,6 +124,11 @@ private:
   /// one: up from tf, else the supporting plane, else the faces' dominant
   /// normal.
   FrameContext frameContext(const RgbdFrame& frame, const std::vector<Segment>& segments) const;
+  /// The plate-colour segments, then (when the catalogue has types without a
+  /// plate colour) the colour-free segments of the pixels left.
+  std::vector<Segment> hsvSegments(const RgbdFrame& frame) const;
+  /// The colour-free segments, without the supporting plane when so configured.
+  std::vector<Segment> colourFreeSegments(const RgbdFrame& frame, const cv::Mat& excluded = cv::Mat()) const;
   /// Joins pieces of one face (see FrontEndParams::merge_face_pieces).
   void mergeFacePieces(const RgbdFrame& frame, const FrameContext& context, FrontEndResult& result) const;
   /// Drops (as rejections) candidates below RoiFilterParams' minimum visible
@@ -125,6 +139,10 @@ private:
   FrontEndParams params_;
   HsvSegmenter hsv_segmenter_;
   RegionGrowingSegmenter region_growing_segmenter_;
+  ColourFreeSegmenter colour_free_segmenter_;
   RoiFilter roi_filter_;
+  /// Mode hsv with types without a plate colour: ROI filtration of the
+  /// colour-free segments against those types only.
+  std::optional<RoiFilter> uncoloured_roi_filter_;
 };
 }  // namespace brick_pose

@@ -58,13 +58,16 @@ RegistrationStageParams registrationStageParamsFrom(const ParamLookup& lookup);
 /// `catalogue_path` (empty or unset: the built-in MBZIRC 2020 bricks).
 BrickCatalogue catalogueFrom(const ParamLookup& lookup);
 
-/// `mode` (hsv | region_growing), `min_area_px`, `crop_min_depth_m`,
+/// `mode` (hsv | region_growing | colour_free), `min_area_px`, `crop_min_depth_m`,
 /// `crop_max_depth_m`, `outlier_removal`, `voxel_leaf_m` (0 disables),
 /// `mls`, `mls_search_radius_m`, `dimension_tolerance_m`, `max_plane_rms_m`;
 /// the top-face check: `max_tilt_deg`, `edge_min_step_m`, `edge_min_groove_m`,
 /// `edge_min_line_contrast`, `edge_seam_noise_factor`, `edge_max_overrun_m`, `tiling_min_seam_strength`,
 /// `side_height_tolerance_m`, `side_height_tolerance_fraction`,
 /// `up_min_support_fraction`.
+/// for colour_free: `colour_free_cell_px`, `colour_free_estimate_noise`,
+/// `colour_free_noise_at_1m_m` (fixed or fallback noise), `colour_free_max_noise_at_1m_m`,
+/// `colour_free_parallel`, `colour_free_skip_supporting_plane`.
 /// Throws ConfigError naming the parameter.
 FrontEndParams frontEndParamsFrom(const ParamLookup& lookup);
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
+#include <optional>
 #include <sstream>
 
 #include "brick_pose/common/errors.h"
@@ -63,6 +65,25 @@ const BrickCatalogue& nonEmpty(const BrickCatalogue& catalogue)
   if (catalogue.empty()) throw ConfigError("front end: the brick catalogue is empty");
   return catalogue;
 }
+
+/// The types of `catalogue` with no plate colour (plain boxes): in mode hsv
+/// they are found by colour-free segmentation instead.
+std::optional<BrickCatalogue> uncolouredTypes(const BrickCatalogue& catalogue)
+{
+  std::vector<BrickType> types;
+  for (const BrickType& type : catalogue.types())
+    if (!type.hasPlateColour()) types.push_back(type);
+  if (types.empty()) return std::nullopt;
+  return BrickCatalogue(std::move(types));
+}
+
+/// Pixels the HSV segments took, for the colour-free pass to leave alone.
+cv::Mat coveredPixels(const RgbdFrame& frame, const std::vector<Segment>& segments)
+{
+  cv::Mat covered = cv::Mat::zeros(frame.height_px(), frame.width_px(), CV_8UC1);
+  for (const Segment& segment : segments) covered(segment.bounding_box_px).setTo(255, segment.mask);
+  return covered;
+}
 }  // namespace
 
 std::string rejectionCategory(const std::string& reason)
@@ -95,12 +116,19 @@ SegmentationMode parseSegmentationMode(const std::string& name)
 {
   if (name == "hsv") return SegmentationMode::kHsv;
   if (name == "region_growing") return SegmentationMode::kRegionGrowing;
-  throw ConfigError("front end: segmentation mode '" + name + "' is not 'hsv' or 'region_growing'");
+  if (name == "colour_free") return SegmentationMode::kColourFree;
+  throw ConfigError("front end: segmentation mode '" + name + "' is not 'hsv', 'region_growing' or 'colour_free'");
 }
 
 std::string toString(SegmentationMode mode)
 {
-  return mode == SegmentationMode::kHsv ? "hsv" : "region_growing";
+  switch (mode)
+  {
+    case SegmentationMode::kHsv: return "hsv";
+    case SegmentationMode::kRegionGrowing: return "region_growing";
+    case SegmentationMode::kColourFree: return "colour_free";
+  }
+  return "unknown";
 }
 
 CloudProcessorParams FrontEndParams::defaultSegmentCloudParams()
@@ -118,15 +146,40 @@ FrontEnd::FrontEnd(const BrickCatalogue& catalogue, const FrontEndParams& params
     params_(params),
     hsv_segmenter_(params.hsv),
     region_growing_segmenter_(params.region_growing),
+    colour_free_segmenter_(params.colour_free),
     roi_filter_(catalogue, pieceFilterParams(params), params.cloud)
 {
   params_.up.validate();
+  if (params.mode == SegmentationMode::kHsv)
+    if (const auto uncoloured = uncolouredTypes(catalogue_))
+      uncoloured_roi_filter_.emplace(*uncoloured, pieceFilterParams(params), params.cloud);
 }
 
 std::vector<Segment> FrontEnd::segment(const RgbdFrame& frame) const
 {
-  return params_.mode == SegmentationMode::kHsv ? hsv_segmenter_.segment(frame, catalogue_)
-                                                : region_growing_segmenter_.segment(frame);
+  switch (params_.mode)
+  {
+    case SegmentationMode::kHsv: return hsvSegments(frame);
+    case SegmentationMode::kRegionGrowing: return region_growing_segmenter_.segment(frame);
+    case SegmentationMode::kColourFree: return colourFreeSegments(frame);
+  }
+  return {};
+}
+
+std::vector<Segment> FrontEnd::hsvSegments(const RgbdFrame& frame) const
+{
+  std::vector<Segment> segments = hsv_segmenter_.segment(frame, catalogue_);
+  if (!uncoloured_roi_filter_) return segments;
+  // Types without a plate colour: colour-free segments (their type_name is
+  // empty) of the pixels no plate colour took.
+  std::vector<Segment> planar = colourFreeSegments(frame, coveredPixels(frame, segments));
+  std::move(planar.begin(), planar.end(), std::back_inserter(segments));
+  return segments;
+}
+
+std::vector<Segment> FrontEnd::colourFreeSegments(const RgbdFrame& frame, const cv::Mat& excluded) const
+{
+  return colour_free_segmenter_.segmentPlanes(frame, excluded, nullptr, !params_.skip_supporting_plane).segments;
 }
 
 void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>& segments,
@@ -138,7 +191,11 @@ void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>
   result.up = context.up;
   for (const Segment& segment : segments)
   {
-    RoiOutcome outcome = roi_filter_.filterSplitting(frame, segment, context, &result.timings.cloud);
+    // In mode hsv a segment without a type is a colour-free one, for the
+    // types without a plate colour only.
+    const bool uncoloured_only = uncoloured_roi_filter_ && segment.type_name.empty();
+    const RoiFilter& filter = uncoloured_only ? *uncoloured_roi_filter_ : roi_filter_;
+    RoiOutcome outcome = filter.filterSplitting(frame, segment, context, &result.timings.cloud);
     std::move(outcome.candidates.begin(), outcome.candidates.end(), std::back_inserter(result.candidates));
     for (std::string& reason : outcome.rejections)
     {

@@ -94,6 +94,13 @@ FrontEndParams frontEndParamsFrom(const ParamLookup& lookup)
   if (const auto mode = read.text("mode")) params.mode = parseSegmentationMode(*mode);
   read.integer("min_area_px", params.hsv.min_area_px);
   params.region_growing.min_area_px = params.hsv.min_area_px;
+  params.colour_free.min_area_px = params.hsv.min_area_px;
+  read.integer("colour_free_cell_px", params.colour_free.cell_px);
+  read.flag("colour_free_estimate_noise", params.colour_free.estimate_noise);
+  read.number("colour_free_noise_at_1m_m", params.colour_free.noise_at_1m_m);
+  read.number("colour_free_max_noise_at_1m_m", params.colour_free.max_noise_at_1m_m);
+  read.flag("colour_free_parallel", params.colour_free.parallel);
+  read.flag("colour_free_skip_supporting_plane", params.skip_supporting_plane);
   read.number("crop_min_depth_m", params.cloud.min_depth_m);
   read.number("crop_max_depth_m", params.cloud.max_depth_m);
   read.flag("outlier_removal", params.cloud.outlier_removal_enabled);
@@ -122,6 +129,7 @@ FrontEndParams frontEndParamsFrom(const ParamLookup& lookup)
   read.number("up_min_support_fraction", params.up.min_support_fraction);
   params.hsv.validate();
   params.region_growing.validate();
+  params.colour_free.validate();
   params.cloud.validate();
   params.roi.validate();
   params.up.validate();
@@ -181,6 +189,12 @@ std::map<std::string, std::string> pipelineParamsInEffect(const ParamLookup& loo
       {"side_height_tolerance_m", text(front_end.roi.sides.height_tolerance_m)},
       {"side_height_tolerance_fraction", text(front_end.roi.sides.height_tolerance_fraction)},
       {"up_min_support_fraction", text(front_end.up.min_support_fraction)},
+      {"colour_free_cell_px", text(front_end.colour_free.cell_px)},
+      {"colour_free_estimate_noise", text(front_end.colour_free.estimate_noise)},
+      {"colour_free_noise_at_1m_m", text(front_end.colour_free.noise_at_1m_m)},
+      {"colour_free_max_noise_at_1m_m", text(front_end.colour_free.max_noise_at_1m_m)},
+      {"colour_free_parallel", text(front_end.colour_free.parallel)},
+      {"colour_free_skip_supporting_plane", text(front_end.skip_supporting_plane)},
       {"overlap", text(estimator.super4pcs.overlap)},
       {"delta_m", text(estimator.super4pcs.delta_m)},
       {"sample_size", text(estimator.super4pcs.sample_size)},
