@@ -60,7 +60,7 @@ BrickCatalogue catalogueFrom(const ParamLookup& lookup);
 
 /// `mode` (hsv | region_growing), `min_area_px`, `crop_min_depth_m`,
 /// `crop_max_depth_m`, `outlier_removal`, `voxel_leaf_m` (0 disables),
-/// `mls`, `mls_search_radius_m`, `dimension_tolerance_m`, `max_plane_rms_m`.
+/// `mls`, `mls_search_radius_m`, `dimension_tolerance_m`, `max_plane_rms_m`, `front_end_threads`.
 /// Throws ConfigError naming the parameter.
 FrontEndParams frontEndParamsFrom(const ParamLookup& lookup);
 

@@ -109,6 +109,8 @@ FrontEndParams frontEndParamsFrom(const ParamLookup& lookup)
   read.number("mls_search_radius_m", params.cloud.mls_search_radius_m);
   read.number("dimension_tolerance_m", params.roi.dimensions.tolerance_m);
   read.number("max_plane_rms_m", params.roi.max_plane_rms_m);
+  read.integer("front_end_threads", params.worker_threads);
+  require(params.worker_threads >= 1 && params.worker_threads <= 64, "front_end_threads", "must be in [1, 64]");
   params.hsv.validate();
   params.region_growing.validate();
   params.cloud.validate();
@@ -158,6 +160,7 @@ std::map<std::string, std::string> pipelineParamsInEffect(const ParamLookup& loo
       {"mls_search_radius_m", text(front_end.cloud.mls_search_radius_m)},
       {"dimension_tolerance_m", text(front_end.roi.dimensions.tolerance_m)},
       {"max_plane_rms_m", text(front_end.roi.max_plane_rms_m)},
+      {"front_end_threads", text(front_end.worker_threads)},
       {"overlap", text(estimator.super4pcs.overlap)},
       {"delta_m", text(estimator.super4pcs.delta_m)},
       {"sample_size", text(estimator.super4pcs.sample_size)},
