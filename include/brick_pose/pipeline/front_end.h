@@ -61,6 +61,11 @@ struct FrontEndParams
   bool merge_face_pieces = true;
   double merge_max_angle_deg = 5.0;
   double merge_max_offset_m = 0.02;
+  /// Segments are filtered on this many threads (1: in the caller's thread).
+  /// A pile's segments are independent and a long brick's face alone can
+  /// take as long as the rest, so two workers on a 2-core machine about
+  /// halve the ROI stage.
+  int worker_threads = 2;
 
   static CloudProcessorParams defaultSegmentCloudParams();
 };
@@ -111,9 +116,9 @@ public:
   FrontEndResult process(const RgbdFrame& frame) const;
 
   /// The two halves of process(), for running them in separate nodelets:
-  /// stage 3, the segments of the configured mode ...
+  /// stage 2, the segments of the configured mode ...
   std::vector<Segment> segment(const RgbdFrame& frame) const;
-  /// ... and stage 4, appending candidates, rejections and the ROI and cloud
+  /// ... and stage 3, appending candidates, rejections and the ROI and cloud
   /// timings of `segments` to `result`.
   void filterSegments(const RgbdFrame& frame, const std::vector<Segment>& segments, FrontEndResult& result) const;
 
@@ -134,6 +139,7 @@ private:
   /// Drops (as rejections) candidates below RoiFilterParams' minimum visible
   /// fraction once pieces are joined.
   void dropSmallPieces(FrontEndResult& result) const;
+  static void appendOutcome(const Segment& segment, RoiOutcome outcome, FrontEndResult& result);
 
   BrickCatalogue catalogue_;
   FrontEndParams params_;

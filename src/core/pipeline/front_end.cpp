@@ -9,6 +9,7 @@
 
 #include "brick_pose/common/errors.h"
 #include "brick_pose/frame/organized_cloud.h"
+#include "brick_pose/common/parallel_for.h"
 
 namespace brick_pose
 {
@@ -22,6 +23,18 @@ double millisecondsSince(Clock::time_point start)
 }
 
 constexpr double kPi = 3.14159265358979323846;
+
+CloudProcessingTimings added(const CloudProcessingTimings& a, const CloudProcessingTimings& b)
+{
+  return {a.crop_ms + b.crop_ms, a.outlier_removal_ms + b.outlier_removal_ms, a.voxel_ms + b.voxel_ms,
+          a.mls_ms + b.mls_ms};
+}
+
+CloudProcessingTimings scaled(const CloudProcessingTimings& timings, double factor)
+{
+  return {timings.crop_ms * factor, timings.outlier_removal_ms * factor, timings.voxel_ms * factor,
+          timings.mls_ms * factor};
+}
 
 /// One segment made of the footprints of two candidates.
 Segment joinSegments(const BrickCandidate& a, const BrickCandidate& b)
@@ -186,26 +199,52 @@ void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>
                               FrontEndResult& result) const
 {
   const auto roi_start = Clock::now();
-  const double cloud_ms_before = result.timings.cloud.total();
+  // Each segment's outcome in its own slot: the merge below keeps the
+  // segments' order whatever thread filtered them.
+  std::vector<RoiOutcome> outcomes(segments.size());
+  std::vector<CloudProcessingTimings> cloud_timings(segments.size());
+  std::vector<double> work_ms(segments.size(), 0.0);
   const FrameContext context = frameContext(frame, segments);
   result.up = context.up;
-  for (const Segment& segment : segments)
-  {
+  parallelFor(static_cast<int>(segments.size()), params_.worker_threads, [&](int i) {
+    const auto start = Clock::now();
     // In mode hsv a segment without a type is a colour-free one, for the
     // types without a plate colour only.
-    const bool uncoloured_only = uncoloured_roi_filter_ && segment.type_name.empty();
+    const bool uncoloured_only = uncoloured_roi_filter_ && segments[i].type_name.empty();
     const RoiFilter& filter = uncoloured_only ? *uncoloured_roi_filter_ : roi_filter_;
-    RoiOutcome outcome = filter.filterSplitting(frame, segment, context, &result.timings.cloud);
-    std::move(outcome.candidates.begin(), outcome.candidates.end(), std::back_inserter(result.candidates));
-    for (std::string& reason : outcome.rejections)
-    {
-      const std::string category = rejectionCategory(reason);
-      result.rejections.push_back({segment.type_name, segment.bounding_box_px, segment.area_px, std::move(reason), category});
-    }
+    outcomes[i] = filter.filterSplitting(frame, segments[i], context, &cloud_timings[i]);
+    work_ms[i] = millisecondsSince(start);
+  });
+  CloudProcessingTimings cloud_work;
+  double total_work_ms = 0.0;
+  for (std::size_t i = 0; i < segments.size(); ++i)
+  {
+    appendOutcome(segments[i], std::move(outcomes[i]), result);
+    cloud_work = added(cloud_work, cloud_timings[i]);
+    total_work_ms += work_ms[i];
   }
+  // Threads overlap: the wall time is split between cloud processing and
+  // the rest of the ROI stage in proportion to the work each took.
+  const double wall_ms = millisecondsSince(roi_start);
+  const double wall_per_work = total_work_ms > 0.0 ? std::min(1.0, wall_ms / total_work_ms) : 1.0;
+  const CloudProcessingTimings cloud_wall = scaled(cloud_work, wall_per_work);
+  result.timings.cloud = added(result.timings.cloud, cloud_wall);
+  const auto merge_start = Clock::now();
+  const double cloud_ms_before = result.timings.cloud.total();
   if (params_.merge_face_pieces) mergeFacePieces(frame, context, result);
   dropSmallPieces(result);
-  result.timings.roi_ms = millisecondsSince(roi_start) - (result.timings.cloud.total() - cloud_ms_before);
+  result.timings.roi_ms = std::max(0.0, wall_ms - cloud_wall.total()) + millisecondsSince(merge_start) -
+                          (result.timings.cloud.total() - cloud_ms_before);
+}
+
+void FrontEnd::appendOutcome(const Segment& segment, RoiOutcome outcome, FrontEndResult& result)
+{
+  std::move(outcome.candidates.begin(), outcome.candidates.end(), std::back_inserter(result.candidates));
+  for (std::string& reason : outcome.rejections)
+  {
+    const std::string category = rejectionCategory(reason);
+    result.rejections.push_back({segment.type_name, segment.bounding_box_px, segment.area_px, std::move(reason), category});
+  }
 }
 
 FrameContext FrontEnd::frameContext(const RgbdFrame& frame, const std::vector<Segment>& segments) const

@@ -127,6 +127,8 @@ FrontEndParams frontEndParamsFrom(const ParamLookup& lookup)
   read.number("side_height_tolerance_m", params.roi.sides.height_tolerance_m);
   read.number("side_height_tolerance_fraction", params.roi.sides.height_tolerance_fraction);
   read.number("up_min_support_fraction", params.up.min_support_fraction);
+  read.integer("front_end_threads", params.worker_threads);
+  require(params.worker_threads >= 1 && params.worker_threads <= 64, "front_end_threads", "must be in [1, 64]");
   params.hsv.validate();
   params.region_growing.validate();
   params.colour_free.validate();
@@ -195,6 +197,7 @@ std::map<std::string, std::string> pipelineParamsInEffect(const ParamLookup& loo
       {"colour_free_max_noise_at_1m_m", text(front_end.colour_free.max_noise_at_1m_m)},
       {"colour_free_parallel", text(front_end.colour_free.parallel)},
       {"colour_free_skip_supporting_plane", text(front_end.skip_supporting_plane)},
+      {"front_end_threads", text(front_end.worker_threads)},
       {"overlap", text(estimator.super4pcs.overlap)},
       {"delta_m", text(estimator.super4pcs.delta_m)},
       {"sample_size", text(estimator.super4pcs.sample_size)},
