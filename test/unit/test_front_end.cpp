@@ -51,6 +51,27 @@ TEST(FrontEnd, OneGreenPlateGivesOneGreenCandidate)
   EXPECT_GE(result.timings.total_ms, result.timings.segmentation_ms);
 }
 
+TEST(FrontEnd, TheFramesUpFromTfDecidesWhatIsATop)
+{
+  const test::PlateScene scene = d415Scene();
+  const FrontEnd front_end(BrickCatalogue::mbzirc2020());
+  // Up along the plate's normal: a top.
+  RgbdFrame facing_up = scene.frame();
+  const Eigen::Vector3d normal = scene.rotation.col(2);
+  const Eigen::Vector3d toward_camera = normal.z() < 0.0 ? normal : Eigen::Vector3d(-normal);
+  facing_up.up_in_camera = 2.0 * toward_camera;  // any length
+  const FrontEndResult top = front_end.process(facing_up);
+  EXPECT_EQ(top.up.source, UpSource::kGiven);
+  EXPECT_NEAR((top.up.up - facing_up.up_in_camera->normalized()).norm(), 0.0, 1e-12);
+  EXPECT_EQ(top.candidates.size(), 1u);
+  // Up across the plate (the plate is a wall): not a top.
+  RgbdFrame sideways = scene.frame();
+  sideways.up_in_camera = toward_camera.cross(Eigen::Vector3d::UnitX()).normalized();
+  const FrontEndResult wall = front_end.process(sideways);
+  EXPECT_EQ(wall.up.source, UpSource::kGiven);
+  EXPECT_TRUE(wall.candidates.empty());
+}
+
 TEST(FrontEnd, RedPlateIsRed)
 {
   test::PlateScene scene = d415Scene();

@@ -250,6 +250,12 @@ void FrontEnd::appendOutcome(const Segment& segment, RoiOutcome outcome, FrontEn
 FrameContext FrontEnd::frameContext(const RgbdFrame& frame, const std::vector<Segment>& segments) const
 {
   FrameContext context = roi_filter_.defaultContext();
+  // The frame's own up (tf at its stamp) wins over a configured one.
+  if (frame.up_in_camera && frame.up_in_camera->allFinite() && frame.up_in_camera->norm() > 1e-9)
+  {
+    context.up.up = frame.up_in_camera->normalized();
+    context.up.source = UpSource::kGiven;
+  }
   const UpDirection support = estimateSupportPlaneUp(frame, params_.up);
   if (context.up.known())
   {
