@@ -12,7 +12,6 @@
 #include "brick_pose/catalogue/brick_catalogue.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/correction/correction_mode.h"
-#include "brick_pose/correction/face_plane_fit.h"
 #include "brick_pose/correction/pose_correction.h"
 
 namespace brick_pose
@@ -422,56 +421,6 @@ TEST(PoseCorrection, ResidualsUnderOneMillimetreNoiseMatchTheErrorPropagation)
 }
 
 // --- plane fit -----------------------------------------------------------------
-
-namespace
-{
-pcl::PointXYZ toPcl(const Eigen::Vector3d& point_m)
-{
-  return pcl::PointXYZ(static_cast<float>(point_m.x()), static_cast<float>(point_m.y()),
-                       static_cast<float>(point_m.z()));
-}
-}  // namespace
-
-TEST(FacePlaneFit, RecoversTheFaceAndPointsItsNormalAtTheCamera)
-{
-  const Eigen::Isometry3d truth = truePose();
-  pcl::PointCloud<pcl::PointXYZ> cloud;
-  for (int i = -10; i <= 10; ++i)
-    for (int j = -6; j <= 6; ++j)
-      cloud.push_back(toPcl(truth * Eigen::Vector3d(0.014 * i, 0.015 * j, 0.0)));
-  cloud.push_back(pcl::PointXYZ(std::numeric_limits<float>::quiet_NaN(), 0.0f, 1.0f));
-  const correction::FittedPlane plane = correction::fitPlaneTowardCamera(cloud);
-  EXPECT_EQ(plane.point_count, 21u * 13u);
-  // Float storage of the points limits agreement to ~1e-7 relative.
-  EXPECT_LT((plane.centroid_m - truth.translation()).norm(), 1e-6);
-  EXPECT_GT(plane.normal.dot(truth.linear().col(2)), 1.0 - 1e-10);
-  EXPECT_LT(plane.normal.dot(plane.centroid_m), 0.0);
-  EXPECT_LT(plane.rms_distance_m, 1e-6);
-
-  // The same points in reverse order must not flip the normal.
-  pcl::PointCloud<pcl::PointXYZ> reversed;
-  reversed.points.assign(cloud.points.rbegin(), cloud.points.rend());
-  EXPECT_GT(correction::fitPlaneTowardCamera(reversed).normal.dot(truth.linear().col(2)), 1.0 - 1e-10);
-}
-
-TEST(FacePlaneFit, RejectsTooFewAndCollinearPoints)
-{
-  pcl::PointCloud<pcl::PointXYZ> cloud;
-  cloud.push_back(pcl::PointXYZ(0.0f, 0.0f, 1.0f));
-  cloud.push_back(pcl::PointXYZ(0.1f, 0.0f, 1.0f));
-  EXPECT_THROW(correction::fitPlaneTowardCamera(cloud), InputError);
-  for (int i = 2; i < 10; ++i)
-    cloud.push_back(pcl::PointXYZ(0.1f * static_cast<float>(i), 0.0f, 1.0f));
-  try
-  {
-    correction::fitPlaneTowardCamera(cloud);
-    FAIL() << "collinear points accepted";
-  }
-  catch (const InputError& e)
-  {
-    EXPECT_NE(std::string(e.what()).find("collinear"), std::string::npos) << e.what();
-  }
-}
 
 // --- mode names ------------------------------------------------------------------
 

@@ -81,8 +81,4 @@ std::vector<cv::Point> largestOutline(const cv::Mat& mask, const cv::Point& offs
 
 /// Signed area, positive when the corners run clockwise on screen (y down).
 double signedAreaPx(const QuadCorners& corners);
-
-/// Intersection of the diagonals: the image of the centre of a planar
-/// rectangle under perspective.
-Eigen::Vector2d diagonalIntersection(const QuadCorners& corners);
 }  // namespace brick_pose

@@ -406,12 +406,4 @@ double signedAreaPx(const QuadCorners& corners)
   for (int k = 0; k < 4; ++k) twice_area += cross(corners[k], corners[(k + 1) % 4]);
   return 0.5 * twice_area;
 }
-
-Eigen::Vector2d diagonalIntersection(const QuadCorners& corners)
-{
-  double t = 0.0, s = 0.0;
-  if (!intersectLines(corners[0], corners[2], corners[1], corners[3], t, s))
-    return 0.25 * (corners[0] + corners[1] + corners[2] + corners[3]);
-  return corners[0] + t * (corners[2] - corners[0]);
-}
 }  // namespace brick_pose
