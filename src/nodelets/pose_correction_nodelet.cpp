@@ -11,6 +11,7 @@
 //    manager) and a grasp planner must still get its answer. Which brick it
 //    answers with is the core's rule (pose/brick_selection.h).
 
+#include <algorithm>
 #include <mutex>
 
 #include <dynamic_reconfigure/server.h>
@@ -315,8 +316,10 @@ private:
       detections = latest_;
     }
     if (!detections) throw InputError("no detections yet: is the camera publishing?");
-    // ROS time: a bag's own time when one plays with --clock.
-    const double age_s = (ros::Time::now() - detections->header.stamp).toSec();
+    // ROS time: a bag's own time when one plays with --clock. rosbag
+    // publishes /clock every 10 ms, so the clock can trail the newest
+    // frame's stamp by a few milliseconds: that frame is new (age 0).
+    const double age_s = std::max(0.0, (ros::Time::now() - detections->header.stamp).toSec());
     if (request.max_age_s > 0.0 && age_s > request.max_age_s)
       throw InputError("data too old: the latest detections are " + std::to_string(age_s) + " s old (max_age_s " +
                        std::to_string(request.max_age_s) + ")");
