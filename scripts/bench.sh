@@ -26,6 +26,7 @@ cd "$root"
 run_bench bench_frontend --frames "$frames"
 run_bench bench_registration --frames "$frames"
 run_bench bench_pose --frames "$frames" --out "$results"
+run_bench bench_tracking --frames 60 --scenes 6
 
 # End-to-end latency of the running pipeline (frame arrival to tf) at 30 Hz,
 # service calls meanwhile: one brick, then the piles users run (issue 14),
