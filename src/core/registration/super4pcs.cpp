@@ -19,6 +19,7 @@
 #include "brick_pose/registration/point_grid.h"
 #include "brick_pose/registration/rigid_fit.h"
 #include "brick_pose/registration/shell_pair_index.h"
+#include "brick_pose/registration/strided_deadline.h"
 #include "brick_pose/registration/uniform_sampling.h"
 #include "brick_pose/registration/whole_view_registration.h"
 
@@ -152,16 +153,12 @@ SearchOutcome searchCongruentSets(const SearchInput& input, const LcpScorer& sco
     for (int k = 0; k < 4; ++k)
       base_points[k] = base->points[k];
 
-    int since_clock = 0;
+    StridedDeadline deadline(start, params.max_time_s, kClockStride);
     finder.find(*base, tolerances, [&](const CongruentSet& set) {
-      if (++since_clock >= kClockStride)
+      if (deadline.passed())
       {
-        since_clock = 0;
-        if (secondsSince(start) >= params.max_time_s)
-        {
-          outcome.stop_reason = "time budget exhausted";
-          return false;
-        }
+        outcome.stop_reason = "time budget exhausted";
+        return false;
       }
       for (int k = 0; k < 4; ++k)
         set_points[k] = input.target_sample.points[set[k]];

@@ -21,6 +21,7 @@
 #include "brick_pose/registration/point_to_plane_icp.h"
 #include "brick_pose/registration/rigid_fit.h"
 #include "brick_pose/registration/shell_pair_index.h"
+#include "brick_pose/registration/strided_deadline.h"
 #include "brick_pose/registration/uniform_sampling.h"
 #include "brick_pose/registration/view_consistency.h"
 
@@ -416,16 +417,12 @@ std::string searchHypotheses(const ViewInput& input, const ViewConsistency& cons
     for (int k = 0; k < 4; ++k)
       base_points[k] = base->points[k];
 
-    int since_clock = 0;
+    StridedDeadline deadline(start, params.max_time_s, kClockStride);
     finder.find(*base, tolerances, [&](const CongruentSet& set) {
-      if (++since_clock >= kClockStride)
+      if (deadline.passed())
       {
-        since_clock = 0;
-        if (secondsSince(start) >= params.max_time_s)
-        {
-          stop_reason = "time budget exhausted (wall clock: the result depends on the machine's load)";
-          return false;
-        }
+        stop_reason = "time budget exhausted (wall clock: the result depends on the machine's load)";
+        return false;
       }
       for (int k = 0; k < 4; ++k)
         set_points[k] = input.model_sample.points[set[k]];
