@@ -1,4 +1,5 @@
 #include "brick_pose/sim/box_layouts.h"
+#include "brick_pose/common/angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +11,6 @@ namespace sim
 {
 namespace
 {
-constexpr double kDegToRad = M_PI / 180.0;
 
 /// Extent of a box in the layout's x and y when it lies flat, long edge
 /// along x (`turned` false) or along y.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/sim/box_layouts.h"
 #include "brick_pose/sim/fast_random.h"
@@ -13,7 +14,6 @@ namespace sim
 {
 namespace
 {
-constexpr double kDegToRad = M_PI / 180.0;
 
 Eigen::Isometry3d brickPose(const Eigen::Vector3d& top_centre_world, double yaw_rad,
                             const Eigen::Vector3d& tilt_axis = Eigen::Vector3d::UnitX(), double tilt_rad = 0.0)

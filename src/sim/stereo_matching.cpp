@@ -26,70 +26,72 @@ cv::Mat disparityOf(const cv::Mat& depth_m, double focal_baseline)
   return disparity;
 }
 
+/// Calls `visit(disparity_px)` for every pixel of the square window of
+/// `radius` around (u, v) that lies inside the image; fattening and smoothing
+/// both look at exactly this neighbourhood.
+template <typename Visit>
+void forEachInWindow(const cv::Mat& disparity, int u, int v, int radius, Visit visit)
+{
+  for (int dv = -radius; dv <= radius; ++dv)
+  {
+    const int y = v + dv;
+    if (y < 0 || y >= disparity.rows) continue;
+    const float* row = disparity.ptr<float>(y);
+    for (int du = -radius; du <= radius; ++du)
+    {
+      const int x = u + du;
+      if (x < 0 || x >= disparity.cols) continue;
+      visit(row[x]);
+    }
+  }
+}
+
+/// A copy of `disparity` whose active pixels take `filtered(u, v, centre)`;
+/// outside the active mask the filters are no-ops, so they are skipped.
+template <typename Filter>
+cv::Mat filterActive(const cv::Mat& disparity, const cv::Mat& active, int radius, Filter filtered)
+{
+  cv::Mat out = disparity.clone();
+  if (radius <= 0) return out;
+  for (int v = 0; v < disparity.rows; ++v)
+    for (int u = 0; u < disparity.cols; ++u)
+      if (active.at<unsigned char>(v, u)) out.at<float>(v, u) = filtered(u, v, disparity.at<float>(v, u));
+  return out;
+}
+
 /// The nearer surface wins a pixel within `radius` of it when it is clearly
 /// nearer (more than the blend threshold).
 cv::Mat fatten(const cv::Mat& disparity, const cv::Mat& active, int radius)
 {
-  cv::Mat out = disparity.clone();
-  if (radius <= 0) return out;
   const float blend = static_cast<float>(kBlendDisparityPx);
-  for (int v = 0; v < disparity.rows; ++v)
-    for (int u = 0; u < disparity.cols; ++u)
-    {
-      if (!active.at<unsigned char>(v, u)) continue;
-      const float centre = disparity.at<float>(v, u);
-      float best = centre;
-      for (int dv = -radius; dv <= radius; ++dv)
-      {
-        const int y = v + dv;
-        if (y < 0 || y >= disparity.rows) continue;
-        const float* row = disparity.ptr<float>(y);
-        for (int du = -radius; du <= radius; ++du)
-        {
-          const int x = u + du;
-          if (x < 0 || x >= disparity.cols) continue;
-          if (row[x] > centre + blend && row[x] > best) best = row[x];
-        }
-      }
-      out.at<float>(v, u) = best;
-    }
-  return out;
+  return filterActive(disparity, active, radius, [&](int u, int v, float centre) {
+    float best = centre;
+    forEachInWindow(disparity, u, v, radius, [&](float neighbour) {
+      if (neighbour > centre + blend && neighbour > best) best = neighbour;
+    });
+    return best;
+  });
 }
 
 /// Mean disparity over the window of the pixels matched together with the
 /// centre (within the blend threshold of it).
 cv::Mat smooth(const cv::Mat& disparity, const cv::Mat& active, int radius)
 {
-  cv::Mat out = disparity.clone();
-  if (radius <= 0) return out;
   const float blend = static_cast<float>(kBlendDisparityPx);
-  for (int v = 0; v < disparity.rows; ++v)
-    for (int u = 0; u < disparity.cols; ++u)
-    {
-      if (!active.at<unsigned char>(v, u)) continue;
-      const float centre = disparity.at<float>(v, u);
-      if (centre <= 0.0f) continue;
-      double sum = 0.0;
-      int count = 0;
-      for (int dv = -radius; dv <= radius; ++dv)
+  return filterActive(disparity, active, radius, [&](int u, int v, float centre) {
+    // No depth stays no depth (the copy keeps the centre).
+    if (centre <= 0.0f) return centre;
+    double sum = 0.0;
+    int count = 0;
+    forEachInWindow(disparity, u, v, radius, [&](float neighbour) {
+      if (std::abs(neighbour - centre) <= blend)
       {
-        const int y = v + dv;
-        if (y < 0 || y >= disparity.rows) continue;
-        const float* row = disparity.ptr<float>(y);
-        for (int du = -radius; du <= radius; ++du)
-        {
-          const int x = u + du;
-          if (x < 0 || x >= disparity.cols) continue;
-          if (std::abs(row[x] - centre) <= blend)
-          {
-            sum += row[x];
-            ++count;
-          }
-        }
+        sum += neighbour;
+        ++count;
       }
-      out.at<float>(v, u) = static_cast<float>(sum / count);
-    }
-  return out;
+    });
+    return static_cast<float>(sum / count);
+  });
 }
 }  // namespace
 

@@ -5,9 +5,12 @@
 // hashed in a grid, with the angle between the two diagonals checked.
 
 #include <array>
+#include <cmath>
 #include <functional>
 #include <utility>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "brick_pose/registration/coplanar_base.h"
 #include "brick_pose/registration/point_set.h"
@@ -26,6 +29,21 @@ struct CongruenceTolerances
 
 /// Target indices matching base points a, b, c, d in that order.
 using CongruentSet = std::array<int, 4>;
+
+/// With normals, a candidate must also turn each base normal onto the normal
+/// of its set point, `set_normal(k)`, within `max_angle_rad`: the pair filters
+/// only compare normals with each other, which cannot tell a flat face from the
+/// same face seen from behind. The caller decides whether its set normals need
+/// normalising, so unit normals are used as they are.
+template <typename SetNormal>
+bool baseNormalsMapped(const Eigen::Isometry3d& transform, const CoplanarBase& base, SetNormal set_normal,
+                       double max_angle_rad)
+{
+  const double min_cos = std::cos(max_angle_rad);
+  for (int k = 0; k < 4; ++k)
+    if ((transform.linear() * base.normals[k]).dot(set_normal(k)) < min_cos) return false;
+  return true;
+}
 
 class CongruentSetFinder
 {

@@ -11,6 +11,15 @@ namespace brick_pose
 {
 namespace registration
 {
+/// A small rigid motion (dt, dw) and the normal equations that solve for one.
+using Twist = Eigen::Matrix<double, 6, 1>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+// The ICP variants drop offsets beyond this many median offsets as outliers
+// (about 3 sigma for Gaussian noise: the median absolute value is 0.67 sigma),
+// e.g. the flying pixels of stereo depth at an edge.
+constexpr double kOutlierOffsetPerMedian = 4.5;
+
 struct RigidFit
 {
   Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();  ///< source -> target
@@ -26,7 +35,6 @@ RigidFit fitRigid(const std::vector<Eigen::Vector3d>& source, const std::vector<
 /// keeps directions no residual constrains (e.g. the in-plane motion of a
 /// face without edge pairs) still instead of letting round-off move them.
 /// Nothing when the solution is not finite.
-std::optional<Eigen::Isometry3d> solveRigidStep(Eigen::Matrix<double, 6, 6> lhs,
-                                                const Eigen::Matrix<double, 6, 1>& rhs, const Eigen::Vector3d& centre);
+std::optional<Eigen::Isometry3d> solveRigidStep(Matrix6d lhs, const Twist& rhs, const Eigen::Vector3d& centre);
 }  // namespace registration
 }  // namespace brick_pose

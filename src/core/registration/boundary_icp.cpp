@@ -17,13 +17,8 @@ namespace registration
 {
 namespace
 {
-using Twist = Eigen::Matrix<double, 6, 1>;
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
-
-// Point-to-plane offsets beyond this many median offsets are outliers (about
-// 3 sigma for Gaussian noise), e.g. the flying pixels of stereo depth at an
-// edge; never below this fraction of the final plane radius.
-constexpr double kOutlierOffsetPerMedian = 4.5;
+// Point-to-plane outliers (kOutlierOffsetPerMedian) lie never nearer than
+// this fraction of the final plane radius.
 constexpr double kMinOutlierOffsetPerRadius = 0.25;
 // Boundary pairs: the outward directions of the two points agree to 60 deg.
 constexpr double kMinOutwardCos = 0.5;

@@ -7,6 +7,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
 
 namespace brick_pose
@@ -15,7 +16,6 @@ namespace registration
 {
 namespace
 {
-constexpr double kDegToRad = M_PI / 180.0;
 
 const char* axisName(int axis)
 {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/registration/brick_symmetry.h"
 
 namespace brick_pose
@@ -12,7 +13,6 @@ namespace registration
 {
 namespace
 {
-constexpr double kDegToRad = M_PI / 180.0;
 // Normals within this angle of an axis belong to it.
 constexpr double kAxisToleranceDeg = 10.0;
 // Fraction of the normals that must lie along the three axes for a box.

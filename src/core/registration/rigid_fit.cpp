@@ -51,11 +51,10 @@ RigidFit fitRigid(const std::vector<Eigen::Vector3d>& source, const std::vector<
   return fit;
 }
 
-std::optional<Eigen::Isometry3d> solveRigidStep(Eigen::Matrix<double, 6, 6> lhs,
-                                                const Eigen::Matrix<double, 6, 1>& rhs, const Eigen::Vector3d& centre)
+std::optional<Eigen::Isometry3d> solveRigidStep(Matrix6d lhs, const Twist& rhs, const Eigen::Vector3d& centre)
 {
   lhs.diagonal().array() += 1e-9 * (lhs.trace() + 1.0);
-  const Eigen::Matrix<double, 6, 1> x = lhs.ldlt().solve(rhs);
+  const Twist x = lhs.ldlt().solve(rhs);
   if (!x.allFinite())
     return std::nullopt;
   const Eigen::Vector3d dw = x.tail<3>();

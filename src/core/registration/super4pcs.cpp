@@ -7,7 +7,9 @@
 
 #include <time.h>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
+#include "brick_pose/common/number_text.h"
 #include "brick_pose/common/statistics.h"
 #include "brick_pose/registration/congruent_set_finder.h"
 #include "brick_pose/registration/coplanar_base.h"
@@ -17,6 +19,7 @@
 #include "brick_pose/registration/point_grid.h"
 #include "brick_pose/registration/rigid_fit.h"
 #include "brick_pose/registration/shell_pair_index.h"
+#include "brick_pose/registration/strided_deadline.h"
 #include "brick_pose/registration/uniform_sampling.h"
 #include "brick_pose/registration/whole_view_registration.h"
 
@@ -26,7 +29,6 @@ namespace registration
 {
 namespace
 {
-constexpr double kDegToRad = M_PI / 180.0;
 // Consecutive failed base draws after which the source is declared unusable
 // (e.g. nearly collinear within the tolerances).
 constexpr int kMaxBaseDrawFailures = 8;
@@ -48,27 +50,17 @@ void requireInRange(double value, double min, double max, const char* name)
   }
 }
 
-std::string formatScore(double value)
-{
-  std::ostringstream text;
-  text.precision(3);
-  text << value;
-  return text.str();
-}
+// Scores and fractions in reasons read to three digits.
+std::string formatScore(double value) { return numberText(value, 3); }
 
 
 
-/// With normals, a candidate must also turn each base normal onto the normal
-/// of its target point: the pair filters only compare normals with each other,
-/// which cannot tell a flat face from the same face seen from behind.
+/// The target's normals need not be unit length here.
 bool normalsMapped(const Eigen::Isometry3d& transform, const CoplanarBase& base, const PointSet& target,
                    const CongruentSet& set, double max_angle_rad)
 {
-  const double min_cos = std::cos(max_angle_rad);
-  for (int k = 0; k < 4; ++k)
-    if ((transform.linear() * base.normals[k]).dot(target.normals[set[k]].normalized()) < min_cos)
-      return false;
-  return true;
+  return baseNormalsMapped(
+      transform, base, [&](int k) { return target.normals[set[k]].normalized(); }, max_angle_rad);
 }
 /// The samples the search works on and the scales derived from them.
 struct SearchInput
@@ -161,16 +153,12 @@ SearchOutcome searchCongruentSets(const SearchInput& input, const LcpScorer& sco
     for (int k = 0; k < 4; ++k)
       base_points[k] = base->points[k];
 
-    int since_clock = 0;
+    StridedDeadline deadline(start, params.max_time_s, kClockStride);
     finder.find(*base, tolerances, [&](const CongruentSet& set) {
-      if (++since_clock >= kClockStride)
+      if (deadline.passed())
       {
-        since_clock = 0;
-        if (secondsSince(start) >= params.max_time_s)
-        {
-          outcome.stop_reason = "time budget exhausted";
-          return false;
-        }
+        outcome.stop_reason = "time budget exhausted";
+        return false;
       }
       for (int k = 0; k < 4; ++k)
         set_points[k] = input.target_sample.points[set[k]];

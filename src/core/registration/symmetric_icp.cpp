@@ -16,15 +16,8 @@ namespace registration
 {
 namespace
 {
-/// A step as translation and rotation vector scaled by the cloud's size, so
-/// that both parts are lengths and can be compared.
-using Twist = Eigen::Matrix<double, 6, 1>;
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
-
-// Offsets along the normal beyond this many median offsets are outliers
-// (about 3 sigma for Gaussian noise: the median absolute value is 0.67 sigma),
-// but never below this fraction of the in-surface tolerance.
-constexpr double kOutlierOffsetPerMedian = 4.5;
+// Offsets along the normal are outliers (kOutlierOffsetPerMedian) never
+// below this fraction of the in-surface tolerance.
 constexpr double kMinOutlierOffsetPerTolerance = 0.5;
 
 /// (source index, target index) pairs; the source -> target ones first.
@@ -267,6 +260,8 @@ Eigen::Isometry3d refineSymmetricIcp(const std::vector<Eigen::Vector3d>& source,
       have_previous = false;
       continue;
     }
+    // Translation and rotation vector scaled by the cloud's size, so that both
+    // parts are lengths and can be compared.
     Twist twist;
     twist << step->translation(), step_rotation.axis() * step_rotation.angle() * length_scale_m;
     const double factor = have_previous ? extrapolationFactor(previous_twist, twist, options) : 0.0;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
 
 namespace brick_pose
@@ -12,7 +13,6 @@ namespace registration
 {
 namespace
 {
-constexpr double kDegToRad = M_PI / 180.0;
 // Angular search radius of a line of sight over the match radius at the
 // point's range: about half a scan spacing, so that the nearest line of sight
 // found belongs to the surface point the model point would hide.

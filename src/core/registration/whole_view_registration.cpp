@@ -9,6 +9,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "brick_pose/common/angles.h"
+#include "brick_pose/common/number_text.h"
 #include "brick_pose/common/statistics.h"
 #include "brick_pose/registration/box_view_checks.h"
 #include "brick_pose/registration/congruent_set_finder.h"
@@ -19,6 +21,7 @@
 #include "brick_pose/registration/point_to_plane_icp.h"
 #include "brick_pose/registration/rigid_fit.h"
 #include "brick_pose/registration/shell_pair_index.h"
+#include "brick_pose/registration/strided_deadline.h"
 #include "brick_pose/registration/uniform_sampling.h"
 #include "brick_pose/registration/view_consistency.h"
 
@@ -28,7 +31,6 @@ namespace registration
 {
 namespace
 {
-constexpr double kDegToRad = M_PI / 180.0;
 constexpr int kMaxBaseDrawFailures = 8;
 // Normal estimation radius over the sample spacing (as the face mode's).
 constexpr double kNormalRadiusPerSpacing = 2.5;
@@ -81,13 +83,8 @@ constexpr double kPolishVisibleCos = 0.2;
 constexpr double kPolishReachPerPairTolerance = 2.5;
 constexpr int kClockStride = 32;
 
-std::string formatScore(double value)
-{
-  std::ostringstream text;
-  text.precision(3);
-  text << value;
-  return text.str();
-}
+// Scores and fractions in reasons read to three digits.
+std::string formatScore(double value) { return numberText(value, 3); }
 
 /// What the view search works on.
 struct ViewInput
@@ -227,15 +224,14 @@ CongruenceTolerances tolerancesFor(const CoplanarBase& base, const ViewInput& in
   return tolerances;
 }
 
-/// The candidate (scan -> model) turns each base normal onto its model point's.
+/// The candidate (scan -> model) turns each base normal onto its model point's
+/// (the model sample's normals are unit already).
 bool normalsMapped(const Eigen::Isometry3d& scan_to_model, const CoplanarBase& base, const PointSet& model_sample,
                    const CongruentSet& set, double max_angle_rad)
 {
-  const double min_cos = std::cos(max_angle_rad);
-  for (int k = 0; k < 4; ++k)
-    if ((scan_to_model.linear() * base.normals[k]).dot(model_sample.normals[set[k]]) < min_cos)
-      return false;
-  return true;
+  return baseNormalsMapped(
+      scan_to_model, base, [&](int k) -> const Eigen::Vector3d& { return model_sample.normals[set[k]]; },
+      max_angle_rad);
 }
 
 bool passesAcceptance(const ViewScore& score, const ViewRegistrationParams& view)
@@ -421,16 +417,12 @@ std::string searchHypotheses(const ViewInput& input, const ViewConsistency& cons
     for (int k = 0; k < 4; ++k)
       base_points[k] = base->points[k];
 
-    int since_clock = 0;
+    StridedDeadline deadline(start, params.max_time_s, kClockStride);
     finder.find(*base, tolerances, [&](const CongruentSet& set) {
-      if (++since_clock >= kClockStride)
+      if (deadline.passed())
       {
-        since_clock = 0;
-        if (secondsSince(start) >= params.max_time_s)
-        {
-          stop_reason = "time budget exhausted (wall clock: the result depends on the machine's load)";
-          return false;
-        }
+        stop_reason = "time budget exhausted (wall clock: the result depends on the machine's load)";
+        return false;
       }
       for (int k = 0; k < 4; ++k)
         set_points[k] = input.model_sample.points[set[k]];
