@@ -1,6 +1,7 @@
 #include "brick_pose/ros/brick_markers.h"
 
 #include <cstdio>
+#include <string>
 
 #include <Eigen/Geometry>
 
@@ -33,15 +34,22 @@ geometry_msgs::Point toPoint(const Eigen::Vector3d& vector)
   return point;
 }
 
-visualization_msgs::Marker outline(const BrickDetection& detection, int id, const BrickCatalogue& catalogue)
+/// A marker of `type` at the detection's pose, in namespace `ns`.
+visualization_msgs::Marker markerAt(const BrickDetection& detection, const std::string& ns, int id, int type)
 {
   visualization_msgs::Marker marker;
   marker.header = detection.pose.header;
-  marker.ns = "brick_outlines";
+  marker.ns = ns;
   marker.id = id;
-  marker.type = visualization_msgs::Marker::LINE_LIST;
+  marker.type = type;
   marker.action = visualization_msgs::Marker::ADD;
   marker.pose = detection.pose.pose;
+  return marker;
+}
+
+visualization_msgs::Marker outline(const BrickDetection& detection, int id, const BrickCatalogue& catalogue)
+{
+  visualization_msgs::Marker marker = markerAt(detection, "brick_outlines", id, visualization_msgs::Marker::LINE_LIST);
   marker.scale.x = 0.004;
   marker.color = colourOf(detection.type, catalogue);
   BrickType shape;
@@ -64,13 +72,8 @@ visualization_msgs::Marker outline(const BrickDetection& detection, int id, cons
 
 visualization_msgs::Marker label(const BrickDetection& detection, int id)
 {
-  visualization_msgs::Marker marker;
-  marker.header = detection.pose.header;
-  marker.ns = "brick_labels";
-  marker.id = id;
-  marker.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
-  marker.action = visualization_msgs::Marker::ADD;
-  marker.pose = detection.pose.pose;
+  visualization_msgs::Marker marker =
+      markerAt(detection, "brick_labels", id, visualization_msgs::Marker::TEXT_VIEW_FACING);
   // Above the plate: 5 cm along the brick's z axis.
   const Eigen::Quaterniond rotation(detection.pose.pose.orientation.w, detection.pose.pose.orientation.x,
                                     detection.pose.pose.orientation.y, detection.pose.pose.orientation.z);
