@@ -1,5 +1,5 @@
 #pragma once
-// Stages 5 and 6 for one brick candidate: Super4PCS registration of the
+// Stages 4 and 5 for one brick candidate: Super4PCS registration of the
 // artificial model (the top face, origin at its centre) onto the segment,
 // then refinement of that pose by the constant-time correction (default), by
 // ICP (the paper's baseline) or not at all.
@@ -77,11 +77,11 @@ public:
   /// Builds the model cloud of every catalogue type once. Throws ConfigError.
   BrickPoseEstimator(const BrickCatalogue& catalogue, const BrickPoseEstimatorParams& params);
 
-  /// Stage 5. Throws InputError when the candidate cannot be registered
+  /// Stage 4. Throws InputError when the candidate cannot be registered
   /// (unknown type, too few points) and when Super4PCS finds no pose.
   BrickRegistration registerCandidate(const BrickCandidate& candidate) const;
 
-  /// Stage 6 from a registration. Throws InputError when the correction
+  /// Stage 5 from a registration. Throws InputError when the correction
   /// rejects the input as degenerate.
   BrickPoseEstimate refine(const BrickCandidate& candidate, const BrickRegistration& registration) const;
 
