@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <string>
 
 #include <pcl/registration/ia_fpcs.h>
 #include <pcl/registration/ia_kfpcs.h>
@@ -38,13 +39,61 @@ Eigen::Isometry3d toIsometry(const Eigen::Matrix4f& matrix)
   return transform;
 }
 
-/// Runs a configured PCL 4PCS-style aligner and fills the shared result.
+using FpcsAligner = pcl::registration::FPCSInitialAlignment<pcl::PointXYZ, pcl::PointXYZ>;
+using KfpcsAligner = pcl::registration::KFPCSInitialAlignment<pcl::PointXYZ, pcl::PointXYZ>;
+
+/// Every baseline rejects bad parameters and inputs the same way before PCL
+/// sees them (inside the timed run, as the results' elapsed_s always was).
+template <typename Params>
+void validateRun(const Params& params, const PointSet& source, const PointSet& target)
+{
+  params.validate();
+  validateRegistrationInput(source, "source");
+  validateRegistrationInput(target, "target");
+}
+
 template <typename Aligner>
-RegistrationResult runFpcs(Aligner& aligner, const PointSet& source, const PointSet& target,
-                           const PclFpcsParams& params, Clock::time_point start)
+void setInputs(Aligner& aligner, const PointSet& source, const PointSet& target)
 {
   aligner.setInputSource(Cloud::ConstPtr(new Cloud(toPclXyz(source))));
   aligner.setInputTarget(Cloud::ConstPtr(new Cloud(toPclXyz(target))));
+}
+
+/// The result every baseline reports: PCL's transform and convergence, scored
+/// like Super4PCS by the LCP within lcp_radius_m. `label` names the method in
+/// the reason ("PCL converged", "PCL ICP did not converge").
+template <typename Aligner>
+RegistrationResult pclResult(Aligner& aligner, const PointSet& source, const PointSet& target, double lcp_radius_m,
+                             const std::string& label, Clock::time_point start)
+{
+  RegistrationResult result;
+  result.source_to_target = toIsometry(aligner.getFinalTransformation());
+  result.success = aligner.hasConverged();
+  result.reason = label + (result.success ? " converged" : " did not converge");
+  result.lcp_score = lcpAfter(source, target, result.source_to_target, lcp_radius_m);
+  result.elapsed_s = secondsSince(start);
+  return result;
+}
+
+/// Plain 4PCS has no setting beyond the shared ones.
+void configureVariant(FpcsAligner& /*aligner*/, const PclFpcsParams& /*params*/) {}
+
+/// Keypoint 4PCS weighs the translation in its score by lambda.
+void configureVariant(KfpcsAligner& aligner, const PclFpcsParams& params)
+{
+  aligner.setLambda(static_cast<float>(params.kfpcs_lambda));
+}
+
+/// Runs one of PCL's 4PCS-style aligners (FPCS or KFPCS) with the shared
+/// parameters; only configureVariant() differs between them.
+template <typename Aligner>
+RegistrationResult alignFpcsVariant(const PointSet& source, const PointSet& target, const PclFpcsParams& params)
+{
+  const Clock::time_point start = Clock::now();
+  validateRun(params, source, target);
+  Aligner aligner;
+  configureVariant(aligner, params);
+  setInputs(aligner, source, target);
   aligner.setApproxOverlap(static_cast<float>(params.overlap));
   aligner.setDelta(static_cast<float>(params.delta_m), false);
   aligner.setNumberOfSamples(params.sample_size);
@@ -56,14 +105,7 @@ RegistrationResult runFpcs(Aligner& aligner, const PointSet& source, const Point
     aligner.setScoreThreshold(static_cast<float>(params.score_threshold));
   Cloud aligned;
   aligner.align(aligned);
-
-  RegistrationResult result;
-  result.source_to_target = toIsometry(aligner.getFinalTransformation());
-  result.success = aligner.hasConverged();
-  result.reason = result.success ? "PCL converged" : "PCL did not converge";
-  result.lcp_score = lcpAfter(source, target, result.source_to_target, params.delta_m);
-  result.elapsed_s = secondsSince(start);
-  return result;
+  return pclResult(aligner, source, target, params.delta_m, "PCL", start);
 }
 }  // namespace
 
@@ -89,48 +131,27 @@ void PclFpcsParams::validate() const
 
 RegistrationResult alignPclFpcs(const PointSet& source, const PointSet& target, const PclFpcsParams& params)
 {
-  const Clock::time_point start = Clock::now();
-  params.validate();
-  validateRegistrationInput(source, "source");
-  validateRegistrationInput(target, "target");
-  pcl::registration::FPCSInitialAlignment<pcl::PointXYZ, pcl::PointXYZ> aligner;
-  return runFpcs(aligner, source, target, params, start);
+  return alignFpcsVariant<FpcsAligner>(source, target, params);
 }
 
 RegistrationResult alignPclKfpcs(const PointSet& source, const PointSet& target, const PclFpcsParams& params)
 {
-  const Clock::time_point start = Clock::now();
-  params.validate();
-  validateRegistrationInput(source, "source");
-  validateRegistrationInput(target, "target");
-  pcl::registration::KFPCSInitialAlignment<pcl::PointXYZ, pcl::PointXYZ> aligner;
-  aligner.setLambda(static_cast<float>(params.kfpcs_lambda));
-  return runFpcs(aligner, source, target, params, start);
+  return alignFpcsVariant<KfpcsAligner>(source, target, params);
 }
 
 RegistrationResult alignPclIcp(const PointSet& source, const PointSet& target, const IcpParams& params)
 {
   const Clock::time_point start = Clock::now();
-  params.validate();
-  validateRegistrationInput(source, "source");
-  validateRegistrationInput(target, "target");
+  validateRun(params, source, target);
   pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ> icp;
-  icp.setInputSource(Cloud::ConstPtr(new Cloud(toPclXyz(source))));
-  icp.setInputTarget(Cloud::ConstPtr(new Cloud(toPclXyz(target))));
+  setInputs(icp, source, target);
   icp.setMaxCorrespondenceDistance(params.max_correspondence_distance_m);
   icp.setMaximumIterations(params.max_iterations);
   icp.setTransformationEpsilon(params.transformation_epsilon_m2);
   icp.setEuclideanFitnessEpsilon(params.relative_fitness_epsilon);
   Cloud aligned;
   icp.align(aligned);
-
-  RegistrationResult result;
-  result.source_to_target = toIsometry(icp.getFinalTransformation());
-  result.success = icp.hasConverged();
-  result.reason = result.success ? "PCL ICP converged" : "PCL ICP did not converge";
-  result.lcp_score = lcpAfter(source, target, result.source_to_target, 0.1 * params.max_correspondence_distance_m);
-  result.elapsed_s = secondsSince(start);
-  return result;
+  return pclResult(icp, source, target, 0.1 * params.max_correspondence_distance_m, "PCL ICP", start);
 }
 }  // namespace registration
 }  // namespace brick_pose

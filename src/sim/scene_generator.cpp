@@ -320,16 +320,14 @@ SceneParams SceneParams::defaultsFor(SceneKind kind)
       // A camera above a pallet, as in the pallet recordings (~1.2-2 m).
       params.min_distance_m = 1.2;
       params.max_distance_m = 2.0;
-      params.min_elevation_deg = 65.0;
-      params.max_elevation_deg = 89.0;
+      params.applyView("top");
       params.max_layers = 3;
       break;
     case SceneKind::kTableBoxes:
-      // 30-70 degrees from the vertical: side faces are large.
+      // Seen obliquely, so that the boxes' side faces are large.
       params.min_distance_m = 0.6;
       params.max_distance_m = 1.5;
-      params.min_elevation_deg = 20.0;
-      params.max_elevation_deg = 60.0;
+      params.applyView("oblique");
       break;
     default:
       break;
