@@ -87,23 +87,48 @@ const BrickType* closestType(const std::vector<const BrickType*>& fitting, const
   return best;
 }
 
-/// Why the type is not certain: another type with this top is as consistent
-/// with every side seen as `best` (a side cut short by a lower neighbour, or
-/// two flat boxes stacked flush, look like a taller box). Empty when the
-/// sides rule every other type out. Closest is not certain: a box typed by a
-/// guess must not be published as complete.
+/// How much worse a rival type must fit (m, summed over the top's two sides
+/// or on one side's height) before the evidence rules it out. Sides are
+/// measured within 6 mm of the catalogue height on the real mOSD scenes,
+/// where the two nearest upright boxes are 31 mm apart in height.
+constexpr double kTypeMarginM = 0.015;
+
+/// Whether what is seen rules `rival` out against `best`: a top size that
+/// fits it kTypeMarginM worse, a side reaching the supporting plane (which
+/// measures the height) that fits it kTypeMarginM worse, or a side ending on
+/// anything else (only a lower bound: a lower neighbour may hide the rest)
+/// taller than the rival.
+bool ruledOut(const BrickType& rival, const BrickType& best, const BrickCandidate& candidate,
+              const std::vector<SideFaceEvidence>& sides, const SideFaceParams& params)
+{
+  const auto top_error_m = [&candidate](const BrickType& type) {
+    return std::abs(candidate.length_m - type.length_m) + std::abs(candidate.width_m - type.width_m);
+  };
+  if (top_error_m(rival) - top_error_m(best) >= kTypeMarginM) return true;
+  for (const SideFaceEvidence& side : sides)
+  {
+    const double height_m = side.visible_height_m;
+    if (side.foot_on_support)
+    {
+      if (std::abs(height_m - rival.height_m) - std::abs(height_m - best.height_m) >= kTypeMarginM) return true;
+    }
+    else if (judgeSideFace(side, rival.height_m, params) == SideFaceVerdict::kMismatch)
+      return true;
+  }
+  return false;
+}
+
+/// Why the type is not certain: another fitting type that what is seen does
+/// not rule out. Empty when every other type is ruled out. Closest is not
+/// certain: a box typed by a guess must not be published as complete.
 std::string typeDoubt(const std::vector<const BrickType*>& fitting, const BrickType& best,
-                      const std::vector<SideFaceEvidence>& sides, const SideFaceParams& params)
+                      const BrickCandidate& candidate, const std::vector<SideFaceEvidence>& sides,
+                      const SideFaceParams& params)
 {
   std::string others;
   for (const BrickType* type : fitting)
-  {
-    if (type == &best) continue;
-    const bool contradicted = std::any_of(sides.begin(), sides.end(), [&](const SideFaceEvidence& side) {
-      return judgeSideFace(side, type->height_m, params) == SideFaceVerdict::kMismatch;
-    });
-    if (!contradicted) others += (others.empty() ? "" : ", ") + type->name;
-  }
+    if (type != &best && !ruledOut(*type, best, candidate, sides, params))
+      others += (others.empty() ? "" : ", ") + type->name;
   if (others.empty()) return {};
   return "type uncertain: the top fits " + best.name + " and " + others +
          ", and no side seen tells their heights apart";
@@ -120,6 +145,37 @@ bool insideImage(const Eigen::Vector2d& point_px, const RgbdFrame& frame, double
          point_px.y() <= frame.height_px() - 1 - margin_px;
 }
 
+/// Share of the quad's pixels outside the segment whose depth lies on the
+/// face's plane (within step_m): the face seen going on where the segment
+/// stops. Pixels covered by something nearer, or without depth, do not count.
+double unsegmentedCoplanarFraction(const RgbdFrame& frame, const BrickCandidate& candidate, double step_m)
+{
+  std::vector<cv::Point> polygon;
+  for (const Eigen::Vector2d& corner : candidate.corners_px)
+    polygon.emplace_back(static_cast<int>(std::lround(corner.x())), static_cast<int>(std::lround(corner.y())));
+  const cv::Rect image(0, 0, frame.width_px(), frame.height_px());
+  const cv::Rect box = cv::boundingRect(polygon) & image;
+  if (box.area() == 0 || !candidate.plane.valid) return 0.0;
+  cv::Mat quad = cv::Mat::zeros(box.size(), CV_8UC1);
+  for (cv::Point& point : polygon) point -= box.tl();
+  cv::fillConvexPoly(quad, polygon, cv::Scalar(255));
+  const cv::Rect& segment_box = candidate.bounding_box_px;
+  int quad_px = 0, coplanar_px = 0;
+  for (int v = box.y; v < box.br().y; ++v)
+    for (int u = box.x; u < box.br().x; ++u)
+    {
+      if (!quad.at<unsigned char>(v - box.y, u - box.x)) continue;
+      ++quad_px;
+      if (segment_box.contains(cv::Point(u, v)) && !candidate.mask.empty() &&
+          candidate.mask.at<unsigned char>(v - segment_box.y, u - segment_box.x))
+        continue;
+      const float z = frame.depthAt(u, v);
+      if (!std::isnan(z) && std::abs(candidate.plane.signedDistance(frame.camera.backProject(u, v, z))) < step_m)
+        ++coplanar_px;
+    }
+  return quad_px > 0 ? static_cast<double>(coplanar_px) / quad_px : 0.0;
+}
+
 /// What lies beyond each quad edge (see edge_evidence.h).
 EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate, const EdgeEvidenceParams& params)
 {
@@ -134,8 +190,11 @@ EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate,
   }
   // The profiles stay clear of the corners, so a corner just past the border
   // (a face a few pixels too long for the image) is only seen here.
+  // (Where an edge at that corner already runs along the border, the face
+  // is cut there and the other edge keeps its own evidence.)
   for (int k = 0; k < 4; ++k)
-    if (!insideImage(candidate.corners_px[k], frame, kCornerBorderMarginPx))
+    if (!insideImage(candidate.corners_px[k], frame, kCornerBorderMarginPx) &&
+        kinds[k] != EdgeKind::kImageBorder && kinds[(k + 3) % 4] != EdgeKind::kImageBorder)
       kinds[k] = kinds[(k + 3) % 4] = EdgeKind::kImageBorder;
   return kinds;
 }
@@ -469,13 +528,7 @@ std::optional<std::string> RoiFilter::measure(const RgbdFrame& frame, const Segm
   candidate.area_px = segment.area_px;
   const pcl::PointCloud<pcl::PointXYZ>::Ptr raw = backProjectPixels(frame, thinned(segment.pixel_indices, params_.max_points));
   ProcessedCloud processed = cloud_processor_.process(raw);
-  if (cloud_timings)
-  {
-    cloud_timings->crop_ms += processed.timings.crop_ms;
-    cloud_timings->voxel_ms += processed.timings.voxel_ms;
-    cloud_timings->outlier_removal_ms += processed.timings.outlier_removal_ms;
-    cloud_timings->mls_ms += processed.timings.mls_ms;
-  }
+  if (cloud_timings) *cloud_timings += processed.timings;
   candidate.points = processed.points;
   candidate.smoothed_points = processed.with_normals;
   if (static_cast<int>(candidate.points->size()) < 3) return std::string("no points left after cloud processing");
@@ -605,7 +658,7 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
     return text.str();
   }
   candidate.type_name = best->name;
-  candidate.type_doubt = typeDoubt(fitting, *best, sides, params_.sides);
+  candidate.type_doubt = typeDoubt(fitting, *best, candidate, sides, params_.sides);
   return std::nullopt;
 }
 
@@ -630,13 +683,16 @@ void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& co
         candidate.partial_reason = edgeReason(k, kind);
         return;
       }
-  // A whole face's segment fills its quad; a notched one (a mask over part
-  // of a printed top, a hole where something lies on it) has not been seen
-  // whole, even when its quad has the catalogue's size.
-  if (candidate.fill_ratio < params_.min_fill_ratio)
+  // The face goes on, on its own plane, where the segment does not: a mask
+  // over part of a printed top, whose quad may still have the catalogue's
+  // size. (Where something nearer covers the quad, the brick's extent is
+  // still known from its ends: covered, not partial.)
+  const double uncovered = unsegmentedCoplanarFraction(frame, candidate, params_.edges.min_step_m);
+  if (uncovered > 1.0 - params_.min_fill_ratio)
   {
-    candidate.partial_reason = describe("the segment fills", candidate.fill_ratio, "of its quad, less than",
-                                        params_.min_fill_ratio);
+    candidate.partial_reason =
+        describe("the face continues on its plane outside the segment over", uncovered, "of its quad; limit",
+                 1.0 - params_.min_fill_ratio);
     return;
   }
   const double tolerance_m = params_.dimensions.tolerance_m;
@@ -650,14 +706,14 @@ void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& co
     candidate.partial_reason = text.str();
     return;
   }
-  if (!candidate.type_doubt.empty())
-  {
-    candidate.partial_reason = candidate.type_doubt;
-    return;
-  }
   if (!context.up.known())
   {
     candidate.partial_reason = "up direction unknown: a top face cannot be told from a side face";
+    return;
+  }
+  if (!candidate.type_doubt.empty())
+  {
+    candidate.partial_reason = candidate.type_doubt;
     return;
   }
   // Last (the most expensive): sides seen below real edges must be as tall
