@@ -25,7 +25,11 @@ start_s=$(date +%s)
 cmake --build "$build_dir" -j"$jobs" --target core_tests fuzz_targets || { echo "sanitize: build failed" >&2; exit 1; }
 build_s=$(( $(date +%s) - start_s ))
 
-(cd "$build_dir" && ctest --output-on-failure -j"$jobs" ${CTEST_ARGS:-}) 2>&1 | tee "$log"
+# The whole-dataset sweeps of the front end over the 25 mOSD scenes (one per
+# segmentation mode, 35 s each under ASan) run in the release build's tests;
+# here the same code runs on the per-scene mOSD tests and the fuzzers.
+ctest_args=${CTEST_ARGS:--E ^MosdFrontEnd\.}
+(cd "$build_dir" && ctest --output-on-failure -j"$jobs" $ctest_args) 2>&1 | tee "$log"
 ctest_status=${PIPESTATUS[0]}
 total_s=$(( $(date +%s) - start_s ))
 

@@ -3,42 +3,39 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "brick_pose/common/enum_names.h"
 #include "brick_pose/common/errors.h"
 
 namespace brick_pose
 {
 namespace sim
 {
-Lighting lightingFromString(const std::string& name)
+namespace
 {
-  if (name == "normal") return Lighting::kNormal;
-  if (name == "sunlight") return Lighting::kSunlight;
-  if (name == "low_light") return Lighting::kLowLight;
-  throw ConfigError("lighting: unknown mode '" + name + "' (expected normal, sunlight or low_light)");
+const EnumNames<Lighting>& lightingNames()
+{
+  static const EnumNames<Lighting> names{
+      {Lighting::kNormal, "normal"}, {Lighting::kSunlight, "sunlight"}, {Lighting::kLowLight, "low_light"}};
+  return names;
 }
 
-std::string toString(Lighting lighting)
+const EnumNames<DepthModel>& depthModelNames()
 {
-  switch (lighting)
-  {
-    case Lighting::kSunlight:
-      return "sunlight";
-    case Lighting::kLowLight:
-      return "low_light";
-    case Lighting::kNormal:
-    default:
-      return "normal";
-  }
+  static const EnumNames<DepthModel> names{{DepthModel::kIdeal, "ideal"}, {DepthModel::kD4xx, "d4xx"}};
+  return names;
 }
+}  // namespace
+
+Lighting lightingFromString(const std::string& name) { return parseEnumName("parameter 'lighting'", name, lightingNames()); }
+
+std::string toString(Lighting lighting) { return enumName(lighting, lightingNames()); }
 
 DepthModel depthModelFromString(const std::string& name)
 {
-  if (name == "ideal") return DepthModel::kIdeal;
-  if (name == "d4xx") return DepthModel::kD4xx;
-  throw ConfigError("parameter 'depth_model': unknown model '" + name + "' (expected ideal or d4xx)");
+  return parseEnumName("parameter 'depth_model'", name, depthModelNames());
 }
 
-std::string toString(DepthModel model) { return model == DepthModel::kD4xx ? "d4xx" : "ideal"; }
+std::string toString(DepthModel model) { return enumName(model, depthModelNames()); }
 
 SensorModel SensorModel::d4xx()
 {

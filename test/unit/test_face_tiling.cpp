@@ -161,6 +161,29 @@ TEST(FaceTiling, ColourFreeTwoRedsEndToEndWithASeamAreNotOneGreen)
   EXPECT_EQ(plain.candidates[0].type_name, "green");
 }
 
+TEST(FaceTiling, ColourFreeGreenSizedFaceWithAFaintLineWhereTwoRedsWouldMeetIsPartial)
+{
+  // A closed seam between two reds: no groove, and a line of 10 grey levels
+  // that the tiler does not cut on. It is no proof of two reds, but a whole
+  // green shows nothing there: green, partial, not complete.
+  test::TouchingPlatesScene scene = rowScene(1, 0.6, 0.2);
+  scene.plates = {{{-0.3, -0.1}, {0.0, 0.1}, {140, 120, 90}}, {{0.0, -0.1}, {0.3, 0.1}, {140, 120, 90}}};
+  scene.line_darkening = 10.0;
+  FrontEndParams params;
+  params.mode = SegmentationMode::kRegionGrowing;
+  const FrontEndResult faint = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
+  ASSERT_EQ(faint.candidates.size(), 1u);
+  EXPECT_EQ(faint.candidates[0].type_name, "green");
+  EXPECT_FALSE(faint.candidates[0].complete);
+  EXPECT_NE(faint.candidates[0].partial_reason.find("smaller catalogue tops"), std::string::npos)
+      << faint.candidates[0].partial_reason;
+  // Nothing there: a whole green.
+  scene.line_darkening = 0.0;
+  const FrontEndResult plain = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
+  ASSERT_EQ(plain.candidates.size(), 1u);
+  EXPECT_TRUE(plain.candidates[0].complete) << plain.candidates[0].partial_reason;
+}
+
 TEST(FaceTiling, MixedLayerOfAGreenAndTwoRedsIsTiledWithBothSizes)
 {
   test::TouchingPlatesScene scene = rowScene(1, 0.6, 0.2);

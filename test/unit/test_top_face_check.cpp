@@ -19,10 +19,10 @@ namespace
 {
 /// Bricks given by (type, x, y, z of the top face centre, yaw) seen from
 /// `elevation_deg` above the horizon at 1.2 m from the first brick's top.
-sim::Scene scene(const std::vector<std::tuple<std::string, Eigen::Vector3d, double>>& bricks, double elevation_deg)
+sim::Scene scene(const std::vector<std::tuple<std::string, Eigen::Vector3d, double>>& bricks, double elevation_deg,
+                 const BrickCatalogue& catalogue = BrickCatalogue::mbzirc2020())
 {
   sim::Scene result;
-  const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
   for (const auto& [type, top_centre, yaw_deg] : bricks)
   {
     sim::PlacedBrick brick{catalogue.at(type), Eigen::Isometry3d::Identity()};
@@ -188,6 +188,105 @@ TEST(TopFaceCheck, ColourFreeSideFacesOfABrickAreRejectedAndItsTopIsComplete)
   for (const Rejection& rejection : result.rejections)
     side_faces += rejection.reason.find("not a top face") != std::string::npos ? 1 : 0;
   EXPECT_GE(side_faces, 1) << "the visible long side is rejected as a side face";
+}
+
+/// Two plain boxes with one top size: only their height tells them apart.
+BrickCatalogue twoBoxesWithOneTop()
+{
+  return BrickCatalogue::fromYamlString(R"(bricks:
+  - {name: tall, length_m: 0.30, width_m: 0.20, height_m: 0.20}
+  - {name: flat, length_m: 0.30, width_m: 0.20, height_m: 0.05}
+)");
+}
+
+/// The colour-free candidate nearest the image centre, if any.
+const BrickCandidate* centralCandidate(const FrontEndResult& result, const PinholeCamera& camera)
+{
+  const BrickCandidate* best = nullptr;
+  double best_px = 1e9;
+  for (const BrickCandidate& candidate : result.candidates)
+  {
+    const double off_px = (candidate.centroid_px - Eigen::Vector2d(camera.cx_px, camera.cy_px)).norm();
+    if (off_px < best_px)
+    {
+      best = &candidate;
+      best_px = off_px;
+    }
+  }
+  return best;
+}
+
+TEST(TopFaceCheck, ATopTwoTypesShareIsCompleteOnlyWhenTheSidesTellTheHeight)
+{
+  const BrickCatalogue catalogue = twoBoxesWithOneTop();
+  FrontEndParams params;
+  params.mode = SegmentationMode::kColourFree;
+  const FrontEnd front_end(catalogue, params);
+
+  // Obliquely the sides run 0.20 m down to the ground: three flat boxes
+  // stacked flush would be 0.15 m, so only "tall" fits.
+  const sim::Scene oblique = scene({{"tall", {0.0, 0.0, 0.2}, 20.0}}, 45.0, catalogue);
+  const Rendered seen_obliquely = render(oblique);
+  const FrontEndResult oblique_result = front_end.process(seen_obliquely.frame);
+  const BrickCandidate* side_on = centralCandidate(oblique_result, seen_obliquely.frame.camera);
+  ASSERT_NE(side_on, nullptr);
+  EXPECT_EQ(side_on->type_name, "tall");
+  EXPECT_TRUE(side_on->type_doubt.empty()) << side_on->type_doubt;
+  EXPECT_TRUE(side_on->complete) << side_on->partial_reason;
+
+  // From straight above no side shows: the type is a guess, so never complete.
+  const sim::Scene above = scene({{"tall", {0.0, 0.0, 0.2}, 20.0}}, 89.0, catalogue);
+  const Rendered seen_from_above = render(above);
+  const FrontEndResult above_result = front_end.process(seen_from_above.frame);
+  const BrickCandidate* top_on = centralCandidate(above_result, seen_from_above.frame.camera);
+  ASSERT_NE(top_on, nullptr);
+  EXPECT_FALSE(top_on->complete);
+  EXPECT_NE(top_on->partial_reason.find("type uncertain"), std::string::npos) << top_on->partial_reason;
+}
+
+/// The scene with its brick moved down the view until the lowest top corner
+/// projects `past_border_px` below the image's last row.
+sim::Scene withCornerPastBottomBorder(sim::Scene bricks, double past_border_px)
+{
+  const PinholeCamera camera = PinholeCamera::d415Color1280x720();
+  for (int pass = 0; pass < 3; ++pass)
+  {
+    const Rendered rendered = render(bricks);
+    double bottom_px = -1e9, depth_m = 1.0;
+    for (const Eigen::Vector3d& corner : topCorners(rendered, 0))
+      if (camera.project(corner).y() > bottom_px)
+      {
+        bottom_px = camera.project(corner).y();
+        depth_m = corner.z();
+      }
+    const double shift_m = (camera.height_px - 1 + past_border_px - bottom_px) * depth_m / camera.fy_px;
+    bricks.bricks[0].world_T_brick.translation() += bricks.world_T_camera.linear() * Eigen::Vector3d(0.0, shift_m, 0.0);
+  }
+  return bricks;
+}
+
+TEST(TopFaceCheck, AFaceWithACornerJustPastTheImageBorderIsNotComplete)
+{
+  FrontEndParams params;
+  params.mode = SegmentationMode::kHsv;
+  const FrontEnd front_end(BrickCatalogue::mbzirc2020(), params);
+  const sim::Scene centred = scene({{"blue", {0.0, 0.0, 0.2}, 105.0}}, 80.0);
+
+  // 5 px past the border the quad still has the catalogue's size and the
+  // edges' profiles (which stay clear of the corners) see real edges, but
+  // the corner itself was never seen.
+  const Rendered cut = render(withCornerPastBottomBorder(centred, 5.0));
+  const FrontEndResult cut_result = front_end.process(cut.frame);
+  ASSERT_EQ(cut_result.candidates.size(), 1u);
+  EXPECT_FALSE(cut_result.candidates[0].complete);
+  EXPECT_NE(cut_result.candidates[0].partial_reason.find("image border"), std::string::npos)
+      << cut_result.candidates[0].partial_reason;
+
+  // 25 px inside it is whole.
+  const Rendered inside = render(withCornerPastBottomBorder(centred, -25.0));
+  const FrontEndResult inside_result = front_end.process(inside.frame);
+  ASSERT_EQ(inside_result.candidates.size(), 1u);
+  EXPECT_TRUE(inside_result.candidates[0].complete) << inside_result.candidates[0].partial_reason;
 }
 }  // namespace
 }  // namespace brick_pose

@@ -44,6 +44,10 @@ struct CloudProcessingTimings
   double voxel_ms = 0.0;
   double mls_ms = 0.0;
   double total() const { return crop_ms + outlier_removal_ms + voxel_ms + mls_ms; }
+  /// Step by step: the times of several clouds (or frames) summed.
+  CloudProcessingTimings& operator+=(const CloudProcessingTimings& other);
+  /// Every step times `factor` (a share of overlapping threads' wall time).
+  CloudProcessingTimings scaled(double factor) const;
 };
 
 /// Result of the enabled steps.

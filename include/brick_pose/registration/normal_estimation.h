@@ -10,6 +10,11 @@ namespace brick_pose
 {
 namespace registration
 {
+/// Neighbourhood radius for normals over a cloud's median sample spacing:
+/// about 20 neighbours on an even sample, enough for a stable PCA and small
+/// enough that a face's normal holds up to a few spacings from its edges.
+constexpr double kNormalRadiusPerSpacing = 2.5;
+
 /// Unit normal of every point: the least-variance direction of the points
 /// within radius_m (PCA). The sign is arbitrary. Points with fewer than 3
 /// neighbours get a zero normal.

@@ -73,6 +73,10 @@ struct BrickCandidate
   /// Angle between the face's normal and the frame's up direction (deg);
   /// NaN when up is unknown.
   double tilt_from_up_deg = 0.0;
+  /// Why the type is a best guess, when it is: colour-free, several catalogue
+  /// types have this top and the sides seen do not rule all but one out.
+  /// Empty when the type is certain; a doubtful type is never complete.
+  std::string type_doubt;
   /// True only when the face is seen whole as a brick's top: length and
   /// width match the catalogue type, it faces up, all four edges are real
   /// edges, and any side face seen to its foot has the catalogue height.

@@ -42,6 +42,20 @@ void CloudProcessorParams::validate() const
   require(mls_polynomial_order >= 0 && mls_polynomial_order <= 3, "mls_polynomial_order", "must be 0..3");
 }
 
+CloudProcessingTimings& CloudProcessingTimings::operator+=(const CloudProcessingTimings& other)
+{
+  crop_ms += other.crop_ms;
+  outlier_removal_ms += other.outlier_removal_ms;
+  voxel_ms += other.voxel_ms;
+  mls_ms += other.mls_ms;
+  return *this;
+}
+
+CloudProcessingTimings CloudProcessingTimings::scaled(double factor) const
+{
+  return {crop_ms * factor, outlier_removal_ms * factor, voxel_ms * factor, mls_ms * factor};
+}
+
 CloudProcessor::CloudProcessor(const CloudProcessorParams& params) : params_(params) { params_.validate(); }
 
 pcl::PointCloud<pcl::PointXYZ>::Ptr CloudProcessor::crop(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud) const

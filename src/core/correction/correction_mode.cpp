@@ -1,27 +1,22 @@
 #include "brick_pose/correction/correction_mode.h"
 
-#include "brick_pose/common/errors.h"
+#include "brick_pose/common/enum_names.h"
 
 namespace brick_pose
 {
+namespace
+{
+const EnumNames<CorrectionMode>& correctionModeNames()
+{
+  static const EnumNames<CorrectionMode> names{{CorrectionMode::kPaper, "paper"}, {CorrectionMode::kFull, "full"}};
+  return names;
+}
+}  // namespace
+
 CorrectionMode parseCorrectionMode(const std::string& name)
 {
-  if (name == "paper")
-    return CorrectionMode::kPaper;
-  if (name == "full")
-    return CorrectionMode::kFull;
-  throw ConfigError("correction mode: unknown value '" + name + "'; expected one of: paper, full");
+  return parseEnumName("correction mode", name, correctionModeNames());
 }
 
-const char* toString(CorrectionMode mode)
-{
-  switch (mode)
-  {
-    case CorrectionMode::kPaper:
-      return "paper";
-    case CorrectionMode::kFull:
-      return "full";
-  }
-  return "unknown";
-}
+const char* toString(CorrectionMode mode) { return enumName(mode, correctionModeNames()); }
 }  // namespace brick_pose

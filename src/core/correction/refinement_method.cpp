@@ -1,31 +1,23 @@
 #include "brick_pose/correction/refinement_method.h"
 
-#include "brick_pose/common/errors.h"
+#include "brick_pose/common/enum_names.h"
 
 namespace brick_pose
 {
+namespace
+{
+const EnumNames<RefinementMethod>& refinementMethodNames()
+{
+  static const EnumNames<RefinementMethod> names{
+      {RefinementMethod::kCorrection, "correction"}, {RefinementMethod::kIcp, "icp"}, {RefinementMethod::kNone, "none"}};
+  return names;
+}
+}  // namespace
+
 RefinementMethod parseRefinementMethod(const std::string& name)
 {
-  if (name == "correction")
-    return RefinementMethod::kCorrection;
-  if (name == "icp")
-    return RefinementMethod::kIcp;
-  if (name == "none")
-    return RefinementMethod::kNone;
-  throw ConfigError("refinement: unknown method '" + name + "'; expected one of: correction, icp, none");
+  return parseEnumName("refinement method", name, refinementMethodNames());
 }
 
-const char* toString(RefinementMethod method)
-{
-  switch (method)
-  {
-    case RefinementMethod::kCorrection:
-      return "correction";
-    case RefinementMethod::kIcp:
-      return "icp";
-    case RefinementMethod::kNone:
-      return "none";
-  }
-  return "unknown";
-}
+const char* toString(RefinementMethod method) { return enumName(method, refinementMethodNames()); }
 }  // namespace brick_pose

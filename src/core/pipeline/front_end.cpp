@@ -7,6 +7,7 @@
 #include <optional>
 #include <sstream>
 
+#include "brick_pose/common/enum_names.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/frame/organized_cloud.h"
 #include "brick_pose/common/parallel_for.h"
@@ -23,18 +24,6 @@ double millisecondsSince(Clock::time_point start)
 }
 
 constexpr double kPi = 3.14159265358979323846;
-
-CloudProcessingTimings added(const CloudProcessingTimings& a, const CloudProcessingTimings& b)
-{
-  return {a.crop_ms + b.crop_ms, a.outlier_removal_ms + b.outlier_removal_ms, a.voxel_ms + b.voxel_ms,
-          a.mls_ms + b.mls_ms};
-}
-
-CloudProcessingTimings scaled(const CloudProcessingTimings& timings, double factor)
-{
-  return {timings.crop_ms * factor, timings.outlier_removal_ms * factor, timings.voxel_ms * factor,
-          timings.mls_ms * factor};
-}
 
 /// One segment made of the footprints of two candidates.
 Segment joinSegments(const BrickCandidate& a, const BrickCandidate& b)
@@ -125,24 +114,23 @@ std::string rejectionCategory(const std::string& reason)
   return "other";
 }
 
+namespace
+{
+const EnumNames<SegmentationMode>& segmentationModeNames()
+{
+  static const EnumNames<SegmentationMode> names{{SegmentationMode::kHsv, "hsv"},
+                                                 {SegmentationMode::kRegionGrowing, "region_growing"},
+                                                 {SegmentationMode::kColourFree, "colour_free"}};
+  return names;
+}
+}  // namespace
+
 SegmentationMode parseSegmentationMode(const std::string& name)
 {
-  if (name == "hsv") return SegmentationMode::kHsv;
-  if (name == "region_growing") return SegmentationMode::kRegionGrowing;
-  if (name == "colour_free") return SegmentationMode::kColourFree;
-  throw ConfigError("front end: segmentation mode '" + name + "' is not 'hsv', 'region_growing' or 'colour_free'");
+  return parseEnumName("parameter 'mode' (segmentation)", name, segmentationModeNames());
 }
 
-std::string toString(SegmentationMode mode)
-{
-  switch (mode)
-  {
-    case SegmentationMode::kHsv: return "hsv";
-    case SegmentationMode::kRegionGrowing: return "region_growing";
-    case SegmentationMode::kColourFree: return "colour_free";
-  }
-  return "unknown";
-}
+std::string toString(SegmentationMode mode) { return enumName(mode, segmentationModeNames()); }
 
 CloudProcessorParams FrontEndParams::defaultSegmentCloudParams()
 {
@@ -199,6 +187,7 @@ void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>
                               FrontEndResult& result) const
 {
   const auto roi_start = Clock::now();
+  const double cloud_ms_before = result.timings.cloud.total();
   // Each segment's outcome in its own slot: the merge below keeps the
   // segments' order whatever thread filtered them.
   std::vector<RoiOutcome> outcomes(segments.size());
@@ -220,21 +209,20 @@ void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>
   for (std::size_t i = 0; i < segments.size(); ++i)
   {
     appendOutcome(segments[i], std::move(outcomes[i]), result);
-    cloud_work = added(cloud_work, cloud_timings[i]);
+    cloud_work += cloud_timings[i];
     total_work_ms += work_ms[i];
   }
   // Threads overlap: the wall time is split between cloud processing and
   // the rest of the ROI stage in proportion to the work each took.
   const double wall_ms = millisecondsSince(roi_start);
   const double wall_per_work = total_work_ms > 0.0 ? std::min(1.0, wall_ms / total_work_ms) : 1.0;
-  const CloudProcessingTimings cloud_wall = scaled(cloud_work, wall_per_work);
-  result.timings.cloud = added(result.timings.cloud, cloud_wall);
-  const auto merge_start = Clock::now();
-  const double cloud_ms_before = result.timings.cloud.total();
+  result.timings.cloud += cloud_work.scaled(wall_per_work);
   if (params_.merge_face_pieces) mergeFacePieces(frame, context, result);
   dropSmallPieces(result);
-  result.timings.roi_ms = std::max(0.0, wall_ms - cloud_wall.total()) + millisecondsSince(merge_start) -
-                          (result.timings.cloud.total() - cloud_ms_before);
+  // The ROI stage is its wall time less the cloud processing done inside it
+  // (the merge above re-measures joined pieces too).
+  result.timings.roi_ms =
+      std::max(0.0, millisecondsSince(roi_start) - (result.timings.cloud.total() - cloud_ms_before));
 }
 
 void FrontEnd::appendOutcome(const Segment& segment, RoiOutcome outcome, FrontEndResult& result)

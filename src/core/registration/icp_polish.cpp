@@ -17,8 +17,6 @@ namespace
 // In-surface tolerance of target -> source ICP pairs over the (dense, clean)
 // source sample's spacing; measured best of 0.75 and 1.0 on the benchmark.
 constexpr double kReverseTolerancePerSpacing = 0.75;
-// Neighbourhood radius over the sample spacing for normal estimation.
-constexpr double kNormalRadiusPerSpacing = 2.5;
 // Neighbours of a point in boundary detection: enough that the centroid of
 // an interior neighbourhood stays close to its point.
 constexpr int kBoundaryNeighbours = 20;

@@ -32,8 +32,6 @@ namespace registration
 namespace
 {
 constexpr int kMaxBaseDrawFailures = 8;
-// Normal estimation radius over the sample spacing (as the face mode's).
-constexpr double kNormalRadiusPerSpacing = 2.5;
 // Match radius over the scan sample's median spacing (as the LCP radius).
 constexpr double kMatchRadiusPerSpacing = 1.3;
 // Model points kept for the model-side checks and the symmetry probe.
