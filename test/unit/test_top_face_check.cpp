@@ -244,6 +244,33 @@ TEST(TopFaceCheck, ATopTwoTypesShareIsCompleteOnlyWhenTheSidesTellTheHeight)
   EXPECT_NE(top_on->partial_reason.find("type uncertain"), std::string::npos) << top_on->partial_reason;
 }
 
+TEST(TopFaceCheck, ABoxLyingOnItsSideIsNotACompleteTopWhenItsSideFaceHasNearlyTheTopsSize)
+{
+  // A crate 0.40 x 0.30 x 0.28 m lying on a long side shows 0.40 x 0.28 m
+  // up, within the dimension tolerance of its top. Seen from straight above
+  // nothing tells the two apart: never a complete top.
+  const BrickCatalogue catalogue = BrickCatalogue::fromYamlString(R"(bricks:
+  - {name: crate, length_m: 0.40, width_m: 0.30, height_m: 0.28}
+)");
+  sim::Scene lying;
+  sim::PlacedBrick crate{catalogue.at("crate"), Eigen::Isometry3d::Identity()};
+  // Brick y (the width) turns up: the box rests on the ground, 0.30 m tall.
+  crate.world_T_brick.linear() = Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  crate.world_T_brick.translation() = Eigen::Vector3d(0.0, 0.0, 0.15);
+  lying.bricks.push_back(crate);
+  lying.world_T_camera = sim::lookAt(Eigen::Vector3d(0.0, 0.14, 0.3), 1.2, 89.0, 25.0);
+  const Rendered rendered = render(lying);
+  FrontEndParams params;
+  params.mode = SegmentationMode::kColourFree;
+  const FrontEndResult result = FrontEnd(catalogue, params).process(rendered.frame);
+  ASSERT_FALSE(result.candidates.empty()) << "the 0.40 x 0.28 m face is found";
+  for (const BrickCandidate& candidate : result.candidates)
+  {
+    EXPECT_FALSE(candidate.complete) << candidate.length_m << " x " << candidate.width_m;
+    EXPECT_NE(candidate.partial_reason.find("crate lying on a side"), std::string::npos) << candidate.partial_reason;
+  }
+}
+
 /// The scene with its brick moved down the view until the lowest top corner
 /// projects `past_border_px` below the image's last row.
 sim::Scene withCornerPastBottomBorder(sim::Scene bricks, double past_border_px)

@@ -87,50 +87,88 @@ const BrickType* closestType(const std::vector<const BrickType*>& fitting, const
   return best;
 }
 
-/// How much worse a rival type must fit (m, summed over the top's two sides
-/// or on one side's height) before the evidence rules it out. Sides are
-/// measured within 6 mm of the catalogue height on the real mOSD scenes,
-/// where the two nearest upright boxes are 31 mm apart in height.
+/// How much worse a rival type must fit (m of error, over the face's length
+/// and width and the heights of the sides reaching the support together)
+/// before the evidence rules it out. On the real mOSD scenes Kinect measures
+/// sides within 6 mm of the catalogue height and tops within about 12 mm.
 constexpr double kTypeMarginM = 0.015;
 
-/// Whether what is seen rules `rival` out against `best`: a top size that
-/// fits it kTypeMarginM worse, a side reaching the supporting plane (which
-/// measures the height) that fits it kTypeMarginM worse, or a side ending on
-/// anything else (only a lower bound: a lower neighbour may hide the rest)
-/// taller than the rival.
+/// How far a type is from what is seen (m): its top against the face's
+/// size, and its height against every side that reaches the supporting
+/// plane (which measures the height).
+double typeErrorM(const BrickType& type, const BrickCandidate& candidate, const std::vector<SideFaceEvidence>& sides)
+{
+  double error_m = std::abs(candidate.length_m - type.length_m) + std::abs(candidate.width_m - type.width_m);
+  for (const SideFaceEvidence& side : sides)
+    if (side.foot_on_support) error_m += std::abs(side.visible_height_m - type.height_m);
+  return error_m;
+}
+
+/// Whether what is seen rules `rival` out against `best`: it fits the face
+/// and the sides reaching the support kTypeMarginM worse in all, or a side
+/// ending on anything else (only a lower bound: a lower neighbour may hide
+/// the rest) is taller than it.
 bool ruledOut(const BrickType& rival, const BrickType& best, const BrickCandidate& candidate,
               const std::vector<SideFaceEvidence>& sides, const SideFaceParams& params)
 {
-  const auto top_error_m = [&candidate](const BrickType& type) {
-    return std::abs(candidate.length_m - type.length_m) + std::abs(candidate.width_m - type.width_m);
-  };
-  if (top_error_m(rival) - top_error_m(best) >= kTypeMarginM) return true;
-  for (const SideFaceEvidence& side : sides)
-  {
-    const double height_m = side.visible_height_m;
-    if (side.foot_on_support)
-    {
-      if (std::abs(height_m - rival.height_m) - std::abs(height_m - best.height_m) >= kTypeMarginM) return true;
-    }
-    else if (judgeSideFace(side, rival.height_m, params) == SideFaceVerdict::kMismatch)
-      return true;
-  }
-  return false;
+  if (typeErrorM(rival, candidate, sides) - typeErrorM(best, candidate, sides) >= kTypeMarginM) return true;
+  return std::any_of(sides.begin(), sides.end(), [&](const SideFaceEvidence& side) {
+    return !side.foot_on_support && judgeSideFace(side, rival.height_m, params) == SideFaceVerdict::kMismatch;
+  });
 }
 
-/// Why the type is not certain: another fitting type that what is seen does
-/// not rule out. Empty when every other type is ruled out. Closest is not
-/// certain: a box typed by a guess must not be published as complete.
-std::string typeDoubt(const std::vector<const BrickType*>& fitting, const BrickType& best,
+/// Two cuboids within kTypeMarginM in every dimension: taking one for the
+/// other leaves the pose and the size within the measurement's error.
+bool sameShape(const BrickType& a, const BrickType& b)
+{
+  return std::abs(a.length_m - b.length_m) < kTypeMarginM && std::abs(a.width_m - b.width_m) < kTypeMarginM &&
+         std::abs(a.height_m - b.height_m) < kTypeMarginM;
+}
+
+/// The faces of `types` other than their tops that differ from the top by
+/// kTypeMarginM or more, each as a type whose "top" is that face (a box
+/// lying on a side or standing on an end shows it, as tall as the dimension
+/// left over).
+/// A brick whose side is its top's size adds nothing: that face looks the same.
+std::vector<BrickType> lyingVariants(const std::vector<BrickType>& types)
+{
+  std::vector<BrickType> variants;
+  for (const BrickType& type : types)
+  {
+    // Lying on a long side: length x height up, width tall. Standing on an
+    // end: width x height up, length tall.
+    const std::array<std::array<double, 3>, 2> faces{
+        {{type.length_m, type.height_m, type.width_m}, {type.width_m, type.height_m, type.length_m}}};
+    for (std::size_t f = 0; f < faces.size(); ++f)
+    {
+      const auto& [a_m, b_m, height_m] = faces[f];
+      BrickType variant = type;
+      variant.name = type.name + (f == 0 ? " lying on a side" : " standing on an end");
+      variant.length_m = std::max(a_m, b_m);
+      variant.width_m = std::min(a_m, b_m);
+      variant.height_m = height_m;
+      const double difference_m =
+          std::abs(variant.length_m - type.length_m) + std::abs(variant.width_m - type.width_m);
+      if (difference_m >= kTypeMarginM) variants.push_back(variant);
+    }
+  }
+  return variants;
+}
+
+/// Why the type is not certain: another fitting type, or a face of a box
+/// lying on its side, that what is seen does not rule out. Empty when all
+/// are ruled out. Closest is not certain: a box typed by a guess must not be
+/// published as complete.
+std::string typeDoubt(const std::vector<const BrickType*>& rivals, const BrickType& best,
                       const BrickCandidate& candidate, const std::vector<SideFaceEvidence>& sides,
                       const SideFaceParams& params)
 {
   std::string others;
-  for (const BrickType* type : fitting)
-    if (type != &best && !ruledOut(*type, best, candidate, sides, params))
+  for (const BrickType* type : rivals)
+    if (type != &best && !sameShape(*type, best) && !ruledOut(*type, best, candidate, sides, params))
       others += (others.empty() ? "" : ", ") + type->name;
   if (others.empty()) return {};
-  return "type uncertain: the top fits " + best.name + " and " + others +
+  return "type uncertain: the face fits " + best.name + " and " + others +
          ", and no side seen tells their heights apart";
 }
 
@@ -652,7 +690,7 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
     return describe("segment fills", candidate.fill_ratio, "of its quad, less than", params_.min_fill_ratio);
   if (thickness_m > tolerance.max_thickness_m)
     return describe("thickness", thickness_m, "m exceeds", tolerance.max_thickness_m);
-  std::vector<const BrickType*> fitting;
+  std::vector<const BrickType*> fitting, rivals;
   double tallest_m = 0.0;
   for (const BrickType& type : catalogue_.types())
     if (fits(type, params_.classification_tolerance_m))
@@ -660,10 +698,18 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
       fitting.push_back(&type);
       tallest_m = std::max(tallest_m, type.height_m);
     }
-  // Several tops of nearly one size: the sides seen to their foot below the
-  // face's real edges say how tall the box is.
+  rivals = fitting;
+  const std::vector<BrickType> lying = lyingVariants(catalogue_.types());
+  for (const BrickType& variant : lying)
+    if (fits(variant, params_.classification_tolerance_m))
+    {
+      rivals.push_back(&variant);
+      tallest_m = std::max(tallest_m, variant.height_m);
+    }
+  // Several faces of nearly one size: the sides seen to their foot below
+  // the face's real edges say how tall the box is.
   std::vector<SideFaceEvidence> sides;
-  if (fitting.size() > 1)
+  if (rivals.size() > 1)
     for (int k = 0; k < 4; ++k)
       if (candidate.edge_kinds[k] == EdgeKind::kStepDown || candidate.edge_kinds[k] == EdgeKind::kCrease)
       {
@@ -681,7 +727,7 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
     return text.str();
   }
   candidate.type_name = best->name;
-  candidate.type_doubt = typeDoubt(fitting, *best, candidate, sides, params_.sides);
+  candidate.type_doubt = typeDoubt(rivals, *best, candidate, sides, params_.sides);
   return std::nullopt;
 }
 
