@@ -10,6 +10,7 @@
 #include "brick_pose/common/errors.h"
 #include "brick_pose/frame/organized_cloud.h"
 #include "brick_pose/roi/plate_splitter.h"
+#include "brick_pose/roi/type_evidence.h"
 
 namespace brick_pose
 {
@@ -59,117 +60,6 @@ double longEdgeSeparation(const std::array<Eigen::Vector3d, 4>& c)
     return (point - a).cross((b - a).normalized()).norm();
   };
   return 0.5 * (distanceToLine(0.5 * (c[0] + c[1]), c[3], c[2]) + distanceToLine(0.5 * (c[3] + c[2]), c[0], c[1]));
-}
-
-/// The fitting type closest to the measured top and, where sides are seen to
-/// their foot, to their height. Sides reaching the supporting plane are the
-/// surest; without one, a side ending on another level surface (a box it
-/// stands on) still tells.
-const BrickType* closestType(const std::vector<const BrickType*>& fitting, const BrickCandidate& candidate,
-                             std::vector<SideFaceEvidence> sides)
-{
-  if (std::any_of(sides.begin(), sides.end(), [](const SideFaceEvidence& side) { return side.foot_on_support; }))
-    sides.erase(std::remove_if(sides.begin(), sides.end(),
-                               [](const SideFaceEvidence& side) { return !side.foot_on_support; }),
-                sides.end());
-  const BrickType* best = nullptr;
-  double best_error_m = std::numeric_limits<double>::max();
-  for (const BrickType* type : fitting)
-  {
-    double error_m = std::abs(candidate.length_m - type->length_m) + std::abs(candidate.width_m - type->width_m);
-    for (const SideFaceEvidence& side : sides) error_m += std::abs(side.visible_height_m - type->height_m);
-    if (error_m < best_error_m)
-    {
-      best = type;
-      best_error_m = error_m;
-    }
-  }
-  return best;
-}
-
-/// How much worse a rival type must fit (m of error, over the face's length
-/// and width and the heights of the sides reaching the support together)
-/// before the evidence rules it out. On the real mOSD scenes Kinect measures
-/// sides within 6 mm of the catalogue height and tops within about 12 mm.
-constexpr double kTypeMarginM = 0.015;
-
-/// How far a type is from what is seen (m): its top against the face's
-/// size, and its height against every side that reaches the supporting
-/// plane (which measures the height).
-double typeErrorM(const BrickType& type, const BrickCandidate& candidate, const std::vector<SideFaceEvidence>& sides)
-{
-  double error_m = std::abs(candidate.length_m - type.length_m) + std::abs(candidate.width_m - type.width_m);
-  for (const SideFaceEvidence& side : sides)
-    if (side.foot_on_support) error_m += std::abs(side.visible_height_m - type.height_m);
-  return error_m;
-}
-
-/// Whether what is seen rules `rival` out against `best`: it fits the face
-/// and the sides reaching the support kTypeMarginM worse in all, or a side
-/// ending on anything else (only a lower bound: a lower neighbour may hide
-/// the rest) is taller than it.
-bool ruledOut(const BrickType& rival, const BrickType& best, const BrickCandidate& candidate,
-              const std::vector<SideFaceEvidence>& sides, const SideFaceParams& params)
-{
-  if (typeErrorM(rival, candidate, sides) - typeErrorM(best, candidate, sides) >= kTypeMarginM) return true;
-  return std::any_of(sides.begin(), sides.end(), [&](const SideFaceEvidence& side) {
-    return !side.foot_on_support && judgeSideFace(side, rival.height_m, params) == SideFaceVerdict::kMismatch;
-  });
-}
-
-/// Two cuboids within kTypeMarginM in every dimension: taking one for the
-/// other leaves the pose and the size within the measurement's error.
-bool sameShape(const BrickType& a, const BrickType& b)
-{
-  return std::abs(a.length_m - b.length_m) < kTypeMarginM && std::abs(a.width_m - b.width_m) < kTypeMarginM &&
-         std::abs(a.height_m - b.height_m) < kTypeMarginM;
-}
-
-/// The faces of `types` other than their tops that differ from the top by
-/// kTypeMarginM or more, each as a type whose "top" is that face (a box
-/// lying on a side or standing on an end shows it, as tall as the dimension
-/// left over).
-/// A brick whose side is its top's size adds nothing: that face looks the same.
-std::vector<BrickType> lyingVariants(const std::vector<BrickType>& types)
-{
-  std::vector<BrickType> variants;
-  for (const BrickType& type : types)
-  {
-    // Lying on a long side: length x height up, width tall. Standing on an
-    // end: width x height up, length tall.
-    const std::array<std::array<double, 3>, 2> faces{
-        {{type.length_m, type.height_m, type.width_m}, {type.width_m, type.height_m, type.length_m}}};
-    for (std::size_t f = 0; f < faces.size(); ++f)
-    {
-      const auto& [a_m, b_m, height_m] = faces[f];
-      BrickType variant = type;
-      variant.name = type.name + (f == 0 ? " lying on a side" : " standing on an end");
-      variant.length_m = std::max(a_m, b_m);
-      variant.width_m = std::min(a_m, b_m);
-      variant.height_m = height_m;
-      const double difference_m =
-          std::abs(variant.length_m - type.length_m) + std::abs(variant.width_m - type.width_m);
-      if (difference_m >= kTypeMarginM) variants.push_back(variant);
-    }
-  }
-  return variants;
-}
-
-/// Why the type is not certain: another fitting type, or a face of a box
-/// lying on its side, that what is seen does not rule out. Empty when all
-/// are ruled out. Closest is not certain: a box typed by a guess must not be
-/// published as complete.
-std::string typeDoubt(const std::vector<const BrickType*>& rivals, const BrickType& best,
-                      const BrickCandidate& candidate, const std::vector<SideFaceEvidence>& sides,
-                      const SideFaceParams& params)
-{
-  std::string others;
-  for (const BrickType* type : rivals)
-    if (type != &best && !sameShape(*type, best) && !ruledOut(*type, best, candidate, sides, params))
-      others += (others.empty() ? "" : ", ") + type->name;
-  if (others.empty()) return {};
-  return "type uncertain: the face fits " + best.name + " and " + others +
-         ", and no side seen tells their heights apart";
 }
 
 /// A quad corner nearer the image border than this (px) may be the border's
@@ -718,7 +608,7 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
                             params_.sides);
         if (side.foot_seen) sides.push_back(side);
       }
-  const BrickType* best = closestType(fitting, candidate, sides);
+  const BrickType* best = closestType(fitting, candidate.length_m, candidate.width_m, sides);
   if (!best)
   {
     std::ostringstream text;
@@ -727,7 +617,7 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
     return text.str();
   }
   candidate.type_name = best->name;
-  candidate.type_doubt = typeDoubt(rivals, *best, candidate, sides, params_.sides);
+  candidate.type_doubt = typeDoubt(rivals, *best, candidate.length_m, candidate.width_m, sides, params_.sides);
   return std::nullopt;
 }
 

@@ -1,0 +1,102 @@
+#include "brick_pose/roi/type_evidence.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace brick_pose
+{
+namespace
+{
+double topErrorM(const BrickType& type, double length_m, double width_m)
+{
+  return std::abs(length_m - type.length_m) + std::abs(width_m - type.width_m);
+}
+
+/// How far a type is from what is seen (m): its top against the face's
+/// size, and its height against every side that reaches the supporting
+/// plane (which measures the height).
+double typeErrorM(const BrickType& type, double length_m, double width_m, const std::vector<SideFaceEvidence>& sides)
+{
+  double error_m = topErrorM(type, length_m, width_m);
+  for (const SideFaceEvidence& side : sides)
+    if (side.foot_on_support) error_m += std::abs(side.visible_height_m - type.height_m);
+  return error_m;
+}
+
+bool ruledOut(const BrickType& rival, const BrickType& best, double length_m, double width_m,
+              const std::vector<SideFaceEvidence>& sides, const SideFaceParams& params)
+{
+  if (typeErrorM(rival, length_m, width_m, sides) - typeErrorM(best, length_m, width_m, sides) >= kTypeMarginM)
+    return true;
+  return std::any_of(sides.begin(), sides.end(), [&](const SideFaceEvidence& side) {
+    return !side.foot_on_support && judgeSideFace(side, rival.height_m, params) == SideFaceVerdict::kMismatch;
+  });
+}
+
+/// Two cuboids within kTypeMarginM in every dimension: taking one for the
+/// other leaves the pose and the size within the measurement's error.
+bool sameShape(const BrickType& a, const BrickType& b)
+{
+  return std::abs(a.length_m - b.length_m) < kTypeMarginM && std::abs(a.width_m - b.width_m) < kTypeMarginM &&
+         std::abs(a.height_m - b.height_m) < kTypeMarginM;
+}
+}  // namespace
+
+const BrickType* closestType(const std::vector<const BrickType*>& fitting, double length_m, double width_m,
+                             std::vector<SideFaceEvidence> sides)
+{
+  const bool any_on_support =
+      std::any_of(sides.begin(), sides.end(), [](const SideFaceEvidence& side) { return side.foot_on_support; });
+  const BrickType* best = nullptr;
+  double best_error_m = std::numeric_limits<double>::max();
+  for (const BrickType* type : fitting)
+  {
+    double error_m = topErrorM(*type, length_m, width_m);
+    for (const SideFaceEvidence& side : sides)
+      if (side.foot_on_support || !any_on_support) error_m += std::abs(side.visible_height_m - type->height_m);
+    if (error_m < best_error_m)
+    {
+      best = type;
+      best_error_m = error_m;
+    }
+  }
+  return best;
+}
+
+std::vector<BrickType> lyingVariants(const std::vector<BrickType>& types)
+{
+  std::vector<BrickType> variants;
+  for (const BrickType& type : types)
+  {
+    // Lying on a long side: length x height up, width tall. Standing on an
+    // end: width x height up, length tall.
+    const std::array<std::array<double, 3>, 2> faces{
+        {{type.length_m, type.height_m, type.width_m}, {type.width_m, type.height_m, type.length_m}}};
+    for (std::size_t f = 0; f < faces.size(); ++f)
+    {
+      const auto& [a_m, b_m, height_m] = faces[f];
+      BrickType variant = type;
+      variant.name = type.name + (f == 0 ? " lying on a side" : " standing on an end");
+      variant.length_m = std::max(a_m, b_m);
+      variant.width_m = std::min(a_m, b_m);
+      variant.height_m = height_m;
+      if (topErrorM(variant, type.length_m, type.width_m) >= kTypeMarginM) variants.push_back(variant);
+    }
+  }
+  return variants;
+}
+
+std::string typeDoubt(const std::vector<const BrickType*>& rivals, const BrickType& best, double length_m,
+                      double width_m, const std::vector<SideFaceEvidence>& sides, const SideFaceParams& params)
+{
+  std::string others;
+  for (const BrickType* type : rivals)
+    if (type != &best && !sameShape(*type, best) && !ruledOut(*type, best, length_m, width_m, sides, params))
+      others += (others.empty() ? "" : ", ") + type->name;
+  if (others.empty()) return {};
+  return "type uncertain: the face fits " + best.name + " and " + others +
+         ", and no side seen tells their heights apart";
+}
+}  // namespace brick_pose

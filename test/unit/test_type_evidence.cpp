@@ -1,0 +1,104 @@
+// Telling catalogue types apart by a face's size and the heights of its
+// sides: which rivals the evidence rules out, and which it leaves in doubt.
+#include <gtest/gtest.h>
+
+#include "brick_pose/roi/type_evidence.h"
+
+namespace brick_pose
+{
+namespace
+{
+BrickType box(const std::string& name, double length_m, double width_m, double height_m)
+{
+  BrickType type;
+  type.name = name;
+  type.length_m = length_m;
+  type.width_m = width_m;
+  type.height_m = height_m;
+  return type;
+}
+
+SideFaceEvidence side(double height_m, bool on_support)
+{
+  SideFaceEvidence evidence;
+  evidence.visible = true;
+  evidence.foot_seen = true;
+  evidence.foot_on_support = on_support;
+  evidence.visible_height_m = height_m;
+  return evidence;
+}
+
+const BrickType kSmall = box("box_small", 0.30, 0.20, 0.15);
+const BrickType kFlat = box("box_flat", 0.30, 0.20, 0.07);
+
+TEST(TypeEvidence, OneTopTwoHeightsIsADoubtUntilASideReachesTheSupport)
+{
+  const std::vector<const BrickType*> rivals{&kSmall, &kFlat};
+  // No side seen: the closest by size is a guess.
+  const std::string doubt = typeDoubt(rivals, kSmall, 0.30, 0.20, {});
+  EXPECT_NE(doubt.find("type uncertain"), std::string::npos);
+  EXPECT_NE(doubt.find("box_flat"), std::string::npos) << doubt;
+  // A side 0.15 m down to the ground measures the height.
+  EXPECT_EQ(closestType(rivals, 0.30, 0.20, {side(0.15, true)}), &kSmall);
+  EXPECT_TRUE(typeDoubt(rivals, kSmall, 0.30, 0.20, {side(0.15, true)}).empty());
+  EXPECT_EQ(closestType(rivals, 0.30, 0.20, {side(0.07, true)}), &kFlat);
+  EXPECT_TRUE(typeDoubt(rivals, kFlat, 0.30, 0.20, {side(0.07, true)}).empty());
+  // A side ending 0.10 m down on a lower box is a lower bound: taller than
+  // the flat box, so it is out; the small one stays certain.
+  EXPECT_TRUE(typeDoubt(rivals, kSmall, 0.30, 0.20, {side(0.10, false)}).empty());
+  // Ending 0.05 m down on a lower box rules nothing out.
+  EXPECT_FALSE(typeDoubt(rivals, kSmall, 0.30, 0.20, {side(0.05, false)}).empty());
+}
+
+TEST(TypeEvidence, NearlyEqualFitsLeaveADoubtAndClearOnesDoNot)
+{
+  const BrickType upright = box("upright", 0.128, 0.038, 0.212);
+  const BrickType other = box("other", 0.147, 0.054, 0.243);
+  const std::vector<const BrickType*> rivals{&upright, &other};
+  // Measured 1 cm wide: as near the other's top as its own.
+  EXPECT_FALSE(typeDoubt(rivals, upright, 0.133, 0.048, {}).empty());
+  // Measured to 2 mm: the other fits 31 mm worse.
+  EXPECT_TRUE(typeDoubt(rivals, upright, 0.129, 0.040, {}).empty());
+  // The side down to the table adds 31 mm against the other over its 6 mm.
+  EXPECT_TRUE(typeDoubt(rivals, upright, 0.133, 0.048, {side(0.218, true)}).empty());
+}
+
+TEST(TypeEvidence, BoxesOfOneShapeWithinTheMarginAreNoDoubt)
+{
+  const BrickType a = box("a", 0.195, 0.047, 0.267);
+  const BrickType b = box("b", 0.204, 0.047, 0.255);
+  EXPECT_TRUE(typeDoubt({&a, &b}, a, 0.200, 0.047, {}).empty());
+}
+
+TEST(TypeEvidence, LyingVariantsAreTheFacesThatDifferFromTheTop)
+{
+  // A 0.40 x 0.30 x 0.25 m box: on a side it shows 0.40 x 0.25 (0.30 tall),
+  // on an end 0.30 x 0.25 (0.40 tall).
+  const std::vector<BrickType> large = lyingVariants({box("large", 0.40, 0.30, 0.25)});
+  ASSERT_EQ(large.size(), 2u);
+  EXPECT_EQ(large[0].name, "large lying on a side");
+  EXPECT_DOUBLE_EQ(large[0].length_m, 0.40);
+  EXPECT_DOUBLE_EQ(large[0].width_m, 0.25);
+  EXPECT_DOUBLE_EQ(large[0].height_m, 0.30);
+  EXPECT_EQ(large[1].name, "large standing on an end");
+  EXPECT_DOUBLE_EQ(large[1].length_m, 0.30);
+  EXPECT_DOUBLE_EQ(large[1].width_m, 0.25);
+  EXPECT_DOUBLE_EQ(large[1].height_m, 0.40);
+  // A brick 0.2 x 0.2 in section shows its top's size on its side: only the
+  // end differs.
+  const std::vector<BrickType> red = lyingVariants({box("red", 0.30, 0.20, 0.20)});
+  ASSERT_EQ(red.size(), 1u);
+  EXPECT_EQ(red[0].name, "red standing on an end");
+
+  // A crate whose side face is near its top's size: a face measured between
+  // the two is a doubt, even with a side (0.28 vs 0.30 m tall); a top
+  // measured at its size with its side 0.28 m down to the ground is not.
+  const BrickType crate = box("crate", 0.40, 0.30, 0.28);
+  const std::vector<BrickType> lying = lyingVariants({crate});
+  const std::vector<const BrickType*> rivals{&crate, &lying[0]};
+  EXPECT_NE(typeDoubt(rivals, crate, 0.40, 0.285, {}).find("crate lying on a side"), std::string::npos);
+  EXPECT_FALSE(typeDoubt(rivals, crate, 0.40, 0.285, {side(0.28, true)}).empty());
+  EXPECT_TRUE(typeDoubt(rivals, crate, 0.40, 0.30, {side(0.28, true)}).empty());
+}
+}  // namespace
+}  // namespace brick_pose
