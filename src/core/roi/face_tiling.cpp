@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <cstdio>
-#include <cstdlib>
 #include <set>
 
 #include <opencv2/imgproc.hpp>
@@ -288,11 +286,6 @@ public:
             if (candidate.type && candidate.score > best.score) best = candidate;
           }
       if (!best.type) break;
-      if (std::getenv("BRICK_POSE_DEBUG_TILING"))
-        std::fprintf(stderr, "tile %s [%d,%d)x[%d,%d) of %dx%d score %.2f cut %d%d%d%d seen %d%d%d%d\n",
-                     best.type->name.c_str(), best.rect.i0, best.rect.i1, best.rect.j0, best.rect.j1, grid_.nx(),
-                     grid_.ny(), best.score, best.cut[0], best.cut[1], best.cut[2], best.cut[3], best.seen[0],
-                     best.seen[1], best.seen[2], best.seen[3]);
       take(best);
       placed.push_back(best);
       if (grid_.freeCount() < 0.05 * total_free) break;
@@ -445,9 +438,6 @@ private:
     const bool line_seen = line_dip >= evidence_params_.min_line_contrast && line_z >= params_.min_seam_strength;
     result.seam = groove_seen || line_seen;
     result.groove = groove_seen;
-    if (std::getenv("BRICK_POSE_DEBUG_TILING2"))
-      std::fprintf(stderr, "  line %c=%d [%d,%d) in %d beyond %d of %d groove %.4f z %.1f line %.1f z %.1f\n",
-                   constant_s ? 's' : 't', line, from, to, inside, beyond, counted, groove, groove_z, line_dip, line_z);
     result.strength = std::min(kBoundaryStrength + 2.0, std::max(groove_seen ? groove_z : 0.0, line_seen ? line_z : 0.0));
     return result;
   }
@@ -673,9 +663,6 @@ FaceTiling tileFace(const RgbdFrame& frame, const Segment& segment, const BrickC
       // standard error comes from the scatter along the line.
       const SeamScore seam = scoreSeam(frame, measured.plane, frame.camera.project(face.corners_m[k]),
                                        frame.camera.project(face.corners_m[(k + 1) % 4]), evidence_params);
-      if (std::getenv("BRICK_POSE_DEBUG_TILING"))
-        std::fprintf(stderr, "cut check: groove %.4f line %.1f strength %.1f seen %d\n", seam.groove_m,
-                     seam.line_contrast, seam.strength, seam.seen);
       // 1.5x the tiler's strength: its search over the lines near each
       // nominal cut finds noise of about 4 standard errors on a plain face
       // (4.4 on a colour-free green, cut into two reds); a faint 1.5 mm groove
