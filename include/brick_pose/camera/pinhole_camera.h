@@ -36,7 +36,10 @@ struct PinholeCamera
   /// Unit-less ray direction (z = 1) through pixel (u, v).
   Eigen::Vector3d ray(double u_px, double v_px) const;
 
-  bool contains(double u_px, double v_px) const;
+  /// Whether pixel (u, v) lies in the image, at least `margin_px` inside its
+  /// outer edge (the edge of the first and last pixels, at -0.5 and
+  /// width - 0.5).
+  bool contains(double u_px, double v_px, double margin_px = 0.0) const;
 
   /// The same camera with the image scaled by `factor` (e.g. 0.5 for 640x360).
   PinholeCamera scaled(double factor) const;

@@ -154,6 +154,9 @@ private:
                                  const std::vector<const BrickType*>* only_types = nullptr) const;
 
   BrickCatalogue catalogue_;
+  /// The catalogue's boxes lying on a side or standing on an end, as rivals
+  /// of a colour-free face's type (see type_evidence.h).
+  std::vector<BrickType> lying_variants_;
   RoiFilterParams params_;
   CloudProcessor cloud_processor_;
 };

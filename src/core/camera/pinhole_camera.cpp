@@ -53,9 +53,10 @@ Eigen::Vector3d PinholeCamera::ray(double u_px, double v_px) const
   return {(u_px - cx_px) / fx_px, (v_px - cy_px) / fy_px, 1.0};
 }
 
-bool PinholeCamera::contains(double u_px, double v_px) const
+bool PinholeCamera::contains(double u_px, double v_px, double margin_px) const
 {
-  return u_px > -0.5 && v_px > -0.5 && u_px < width_px - 0.5 && v_px < height_px - 0.5;
+  const double low = margin_px - 0.5;
+  return u_px > low && v_px > low && u_px < width_px - 1 - low && v_px < height_px - 1 - low;
 }
 
 PinholeCamera PinholeCamera::scaled(double factor) const

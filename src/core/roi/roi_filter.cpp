@@ -62,16 +62,11 @@ double longEdgeSeparation(const std::array<Eigen::Vector3d, 4>& c)
   return 0.5 * (distanceToLine(0.5 * (c[0] + c[1]), c[3], c[2]) + distanceToLine(0.5 * (c[3] + c[2]), c[0], c[1]));
 }
 
-/// A quad corner nearer the image border than this (px) may be the border's
-/// cut rather than the face's corner: measured corners are within 1.1 px of
-/// the truth at p90 on the rig.
-constexpr double kCornerBorderMarginPx = 2.0;
-
-bool insideImage(const Eigen::Vector2d& point_px, const RgbdFrame& frame, double margin_px)
-{
-  return point_px.x() >= margin_px && point_px.y() >= margin_px && point_px.x() <= frame.width_px() - 1 - margin_px &&
-         point_px.y() <= frame.height_px() - 1 - margin_px;
-}
+/// A quad corner nearer the image's outer edge than this (px; 2 px from the
+/// centre of the outermost pixels) may be the border's cut rather than the
+/// face's corner: measured corners are within 1.1 px of the truth at p90 on
+/// the rig.
+constexpr double kCornerBorderMarginPx = 2.5;
 
 /// A line this strong (standard errors of its along-line scatter) where
 /// smaller bricks would meet doubts the whole, though the tiler did not cut
@@ -142,7 +137,7 @@ EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate,
   // (Where an edge at that corner already runs along the border, the face
   // is cut there and the other edge keeps its own evidence.)
   for (int k = 0; k < 4; ++k)
-    if (!insideImage(candidate.corners_px[k], frame, kCornerBorderMarginPx) &&
+    if (!frame.camera.contains(candidate.corners_px[k].x(), candidate.corners_px[k].y(), kCornerBorderMarginPx) &&
         kinds[k] != EdgeKind::kImageBorder && kinds[(k + 3) % 4] != EdgeKind::kImageBorder)
       kinds[k] = kinds[(k + 3) % 4] = EdgeKind::kImageBorder;
   return kinds;
@@ -259,7 +254,10 @@ void RoiFilterParams::validate() const
 
 RoiFilter::RoiFilter(const BrickCatalogue& catalogue, const RoiFilterParams& params,
                      const CloudProcessorParams& cloud_params)
-  : catalogue_(catalogue), params_(params), cloud_processor_(cloud_params)
+  : catalogue_(catalogue),
+    lying_variants_(lyingVariants(catalogue.types())),
+    params_(params),
+    cloud_processor_(cloud_params)
 {
   params_.validate();
 }
@@ -580,7 +578,7 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
     return describe("segment fills", candidate.fill_ratio, "of its quad, less than", params_.min_fill_ratio);
   if (thickness_m > tolerance.max_thickness_m)
     return describe("thickness", thickness_m, "m exceeds", tolerance.max_thickness_m);
-  std::vector<const BrickType*> fitting, rivals;
+  std::vector<const BrickType*> fitting;
   double tallest_m = 0.0;
   for (const BrickType& type : catalogue_.types())
     if (fits(type, params_.classification_tolerance_m))
@@ -588,9 +586,8 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
       fitting.push_back(&type);
       tallest_m = std::max(tallest_m, type.height_m);
     }
-  rivals = fitting;
-  const std::vector<BrickType> lying = lyingVariants(catalogue_.types());
-  for (const BrickType& variant : lying)
+  std::vector<const BrickType*> rivals = fitting;
+  for (const BrickType& variant : lying_variants_)
     if (fits(variant, params_.classification_tolerance_m))
     {
       rivals.push_back(&variant);
