@@ -20,6 +20,7 @@
 
 #include <Eigen/SVD>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/param_parsing.h"
 #include "brick_pose/common/statistics.h"
 #include "brick_pose/frame/frame_builder.h"
@@ -125,7 +126,7 @@ void addJitter(const TrackPoses& tracks, int frames_needed, Jitter& jitter)
       sum_sq_rad += std::pow(Eigen::AngleAxisd(reference.transpose() * pose.linear()).angle(), 2);
     }
     jitter.translation_mm.push_back(1000.0 * std::sqrt(sum_sq_m / poses.size()));
-    jitter.rotation_deg.push_back(std::sqrt(sum_sq_rad / poses.size()) * 180.0 / M_PI);
+    jitter.rotation_deg.push_back(std::sqrt(sum_sq_rad / poses.size()) * kRadToDeg);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/registration/uniform_sampling.h"
 #include "brick_pose/sim/scene_generator.h"
@@ -119,7 +120,7 @@ ViewCase RigViewSource::make(int index, int& redraws) const
     sim::PlacedBrick brick;
     brick.type = view.type;
     brick.world_T_brick = Eigen::Isometry3d::Identity();
-    brick.world_T_brick.linear() = Eigen::AngleAxisd(yaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    brick.world_T_brick.linear() = Eigen::AngleAxisd(yaw_deg * kDegToRad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     brick.world_T_brick.translation() = Eigen::Vector3d(0.0, 0.0, view.type.height_m);
     scene.bricks.push_back(brick);
     scene.world_T_camera = sim::lookAt(Eigen::Vector3d(0.0, 0.0, 0.5 * view.type.height_m), distance_m,

@@ -6,6 +6,8 @@
 #include <chrono>
 #include <string>
 
+#include "brick_pose/common/elapsed.h"
+
 namespace brick_pose
 {
 namespace bench
@@ -26,7 +28,5 @@ double loadAverage();
 /// CPU time of the whole process (all threads) in milliseconds: unlike the
 /// wall time it does not grow while other processes hold the cores.
 double processCpuMs();
-
-double millisecondsSince(std::chrono::steady_clock::time_point start);
 }  // namespace bench
 }  // namespace brick_pose

@@ -8,6 +8,7 @@
 #include <pcl/registration/ia_kfpcs.h>
 #include <pcl/registration/icp.h>
 
+#include "brick_pose/common/elapsed.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/registration/input_validation.h"
 #include "brick_pose/registration/lcp_scorer.h"
@@ -19,13 +20,6 @@ namespace registration
 namespace
 {
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start)
-{
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 double lcpAfter(const PointSet& source, const PointSet& target, const Eigen::Isometry3d& transform, double radius_m)
 {
   const LcpScorer scorer(source.points, target.points, radius_m);
@@ -64,7 +58,7 @@ void setInputs(Aligner& aligner, const PointSet& source, const PointSet& target)
 /// the reason ("PCL converged", "PCL ICP did not converge").
 template <typename Aligner>
 RegistrationResult pclResult(Aligner& aligner, const PointSet& source, const PointSet& target, double lcp_radius_m,
-                             const std::string& label, Clock::time_point start)
+                             const std::string& label, SteadyClock::time_point start)
 {
   RegistrationResult result;
   result.source_to_target = toIsometry(aligner.getFinalTransformation());
@@ -89,7 +83,7 @@ void configureVariant(KfpcsAligner& aligner, const PclFpcsParams& params)
 template <typename Aligner>
 RegistrationResult alignFpcsVariant(const PointSet& source, const PointSet& target, const PclFpcsParams& params)
 {
-  const Clock::time_point start = Clock::now();
+  const SteadyClock::time_point start = SteadyClock::now();
   validateRun(params, source, target);
   Aligner aligner;
   configureVariant(aligner, params);
@@ -111,22 +105,14 @@ RegistrationResult alignFpcsVariant(const PointSet& source, const PointSet& targ
 
 void PclFpcsParams::validate() const
 {
-  if (!(overlap > 0.0 && overlap <= 1.0))
-    throw ConfigError("PclFpcsParams.overlap must be in (0, 1], got " + std::to_string(overlap));
-  if (!(delta_m > 0.0 && std::isfinite(delta_m)))
-    throw ConfigError("PclFpcsParams.delta_m must be positive, got " + std::to_string(delta_m));
-  if (sample_size < 4)
-    throw ConfigError("PclFpcsParams.sample_size must be at least 4, got " + std::to_string(sample_size));
-  if (max_time_s < 1)
-    throw ConfigError("PclFpcsParams.max_time_s must be at least 1 (PCL counts whole seconds), got " +
-                      std::to_string(max_time_s));
-  if (max_iterations < 0)
-    throw ConfigError("PclFpcsParams.max_iterations must be >= 0 (0: PCL's heuristic), got " +
-                      std::to_string(max_iterations));
-  if (std::isnan(score_threshold))
-    throw ConfigError("PclFpcsParams.score_threshold must be a number (negative: PCL's default)");
-  if (!(kfpcs_lambda >= 0.0))
-    throw ConfigError("PclFpcsParams.kfpcs_lambda must be >= 0, got " + std::to_string(kfpcs_lambda));
+  const ParamCheck check("PclFpcsParams");
+  check.require(overlap > 0.0 && overlap <= 1.0, "overlap", "must be in (0, 1]", overlap);
+  check.require(delta_m > 0.0 && std::isfinite(delta_m), "delta_m", "must be positive", delta_m);
+  check.require(sample_size >= 4, "sample_size", "must be at least 4", sample_size);
+  check.require(max_time_s >= 1, "max_time_s", "must be at least 1 (PCL counts whole seconds)", max_time_s);
+  check.require(max_iterations >= 0, "max_iterations", "must be >= 0 (0: PCL's heuristic)", max_iterations);
+  check.require(!std::isnan(score_threshold), "score_threshold", "must be a number (negative: PCL's default)");
+  check.require(kfpcs_lambda >= 0.0, "kfpcs_lambda", "must be >= 0", kfpcs_lambda);
 }
 
 RegistrationResult alignPclFpcs(const PointSet& source, const PointSet& target, const PclFpcsParams& params)
@@ -141,7 +127,7 @@ RegistrationResult alignPclKfpcs(const PointSet& source, const PointSet& target,
 
 RegistrationResult alignPclIcp(const PointSet& source, const PointSet& target, const IcpParams& params)
 {
-  const Clock::time_point start = Clock::now();
+  const SteadyClock::time_point start = SteadyClock::now();
   validateRun(params, source, target);
   pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ> icp;
   setInputs(icp, source, target);

@@ -9,6 +9,7 @@
 #include <Eigen/SVD>
 #include <opencv2/imgproc.hpp>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/common/statistics.h"
 
@@ -18,7 +19,6 @@ namespace eval
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 /// Table points farther than this from the objects do not enter its plane:
 /// the Kinect's depth bends by millimetres toward the far end of a table.
 constexpr double kLocalTableRadiusM = 0.6;
@@ -41,9 +41,9 @@ void addPixel(const RgbdFrame& frame, int pixel, LabelledPoints& to)
 FaceRole roleOf(const Eigen::Vector3d& normal, const Eigen::Vector3d& up, double max_tilt_deg)
 {
   const double cos_up = normal.dot(up);
-  if (cos_up >= std::cos(max_tilt_deg * kPi / 180.0)) return FaceRole::kTop;
-  if (std::abs(cos_up) <= std::sin(max_tilt_deg * kPi / 180.0)) return FaceRole::kSide;
-  if (cos_up <= -std::cos(max_tilt_deg * kPi / 180.0)) return FaceRole::kBottom;
+  if (cos_up >= std::cos(max_tilt_deg * kDegToRad)) return FaceRole::kTop;
+  if (std::abs(cos_up) <= std::sin(max_tilt_deg * kDegToRad)) return FaceRole::kSide;
+  if (cos_up <= -std::cos(max_tilt_deg * kDegToRad)) return FaceRole::kBottom;
   return FaceRole::kOther;
 }
 
@@ -158,7 +158,7 @@ Eigen::Matrix3d fitBoxAxes(const MosdBox& box, const Eigen::Matrix3d& initial)
   {
     if (face.role != FaceRole::kTop && face.role != FaceRole::kSide) continue;
     int best_axis = -1;
-    double best_cos = std::cos(30.0 * kPi / 180.0);
+    double best_cos = std::cos(30.0 * kDegToRad);
     Eigen::Vector3d best_direction;
     for (int axis = 0; axis < 3; ++axis)
       for (const double sign : {1.0, -1.0})

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
 
 namespace brick_pose
@@ -12,7 +13,6 @@ namespace eval
 namespace
 {
 constexpr int kFacesPerBrick = 6;
-constexpr double kPi = 3.14159265358979323846;
 
 /// Outward normal of a cuboid face in the brick frame.
 Eigen::Vector3d faceNormalInBrick(sim::CuboidFace face)
@@ -34,8 +34,8 @@ FaceRole roleOf(sim::CuboidFace face, const Eigen::Vector3d& normal_in_camera, c
                 double max_tilt_deg)
 {
   const double cos_up = normal_in_camera.dot(up);
-  const double cos_tilt = std::cos(max_tilt_deg * kPi / 180.0);
-  const double sin_tilt = std::sin(max_tilt_deg * kPi / 180.0);
+  const double cos_tilt = std::cos(max_tilt_deg * kDegToRad);
+  const double sin_tilt = std::sin(max_tilt_deg * kDegToRad);
   // Only the catalogue's top face is a top: another face turned up is not
   // the face whose size the catalogue gives.
   if (face == sim::CuboidFace::kTop) return cos_up >= cos_tilt ? FaceRole::kTop : FaceRole::kOther;
@@ -94,9 +94,9 @@ SceneTruth rigSceneTruth(const sim::SyntheticFrame& frame, const Eigen::Vector3d
       char reason[96];
       if (face_truth.role != FaceRole::kTop)
         face_truth.not_whole_reason = "the top face does not face up";
-      else if (brick.top_face_cut_by_border)
+      else if (brick.top_face.cut_by_border)
         face_truth.not_whole_reason = "cut by the image border";
-      else if (brick.top_face_occluded || !brick.top_face_complete)
+      else if (brick.top_face.occluded || !brick.top_face_complete)
       {
         std::snprintf(reason, sizeof(reason), "occluded (%.1f%% visible)", 100.0 * brick.visible_fraction);
         face_truth.not_whole_reason = reason;

@@ -57,27 +57,22 @@ void ScoreTally::add(const FrameMatch& match, double legacy_min_visible_fraction
 
 void ScoreTally::merge(const ScoreTally& other)
 {
-  frames += other.frames;
-  candidates += other.candidates;
-  complete_candidates += other.complete_candidates;
-  false_complete += other.false_complete;
+  // Every count and every error series, each named once.
+  static constexpr int ScoreTally::*kCounts[] = {
+      &ScoreTally::frames,           &ScoreTally::candidates,        &ScoreTally::complete_candidates,
+      &ScoreTally::false_complete,   &ScoreTally::whole_tops,        &ScoreTally::whole_tops_found,
+      &ScoreTally::whole_tops_found_complete, &ScoreTally::legacy_tops, &ScoreTally::legacy_tops_found,
+      &ScoreTally::legacy_true_positives};
+  static constexpr std::vector<double> ScoreTally::*kErrorSeries[] = {
+      &ScoreTally::rotation_deg,    &ScoreTally::normal_deg,     &ScoreTally::centre_mm,
+      &ScoreTally::length_error_mm, &ScoreTally::width_error_mm, &ScoreTally::corner_error_px};
+  for (const auto count : kCounts) this->*count += other.*count;
+  for (const auto series : kErrorSeries) append(this->*series, other.*series);
   for (int k = 0; k < kCandidateOutcomeCount; ++k)
   {
     outcomes[k] += other.outcomes[k];
     false_complete_by_outcome[k] += other.false_complete_by_outcome[k];
   }
-  whole_tops += other.whole_tops;
-  whole_tops_found += other.whole_tops_found;
-  whole_tops_found_complete += other.whole_tops_found_complete;
-  legacy_tops += other.legacy_tops;
-  legacy_tops_found += other.legacy_tops_found;
-  legacy_true_positives += other.legacy_true_positives;
-  append(rotation_deg, other.rotation_deg);
-  append(normal_deg, other.normal_deg);
-  append(centre_mm, other.centre_mm);
-  append(length_error_mm, other.length_error_mm);
-  append(width_error_mm, other.width_error_mm);
-  append(corner_error_px, other.corner_error_px);
 }
 
 double ScoreTally::recall() const { return ratio(whole_tops_found, whole_tops); }

@@ -97,8 +97,7 @@ private:
     tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_, getMTNodeHandle());
     detections_publisher_ = node().advertise<BrickDetectionArray>("detections", 5);
     markers_publisher_ = node().advertise<visualization_msgs::MarkerArray>("markers", 2);
-    registrations_subscriber_ =
-        node().subscribe("registrations", stageParams().queue_size, &PoseCorrectionNodelet::onRegistrations, this);
+    registrations_subscriber_ = subscribeInput("registrations", &PoseCorrectionNodelet::onRegistrations, this);
     advertiseService(node());
     startReconfigure();
   }

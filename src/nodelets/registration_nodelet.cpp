@@ -37,10 +37,9 @@ private:
     estimator_ = std::make_unique<BrickPoseEstimator>(catalogue_, estimatorParamsFrom(lookup));
     budget_ = registrationStageParamsFrom(lookup);
     previous_poses_ = PreviousPoses(trackedPoseParamsFrom(lookup));
-    const int queue_size = stageParams().queue_size;
     detections_subscriber_ = node().subscribe("detections", 1, &RegistrationNodelet::onDetections, this);
-    registrations_publisher_ = node().advertise<RegistrationsMessage>("registrations", queue_size);
-    candidates_subscriber_ = node().subscribe("candidates", queue_size, &RegistrationNodelet::onCandidates, this);
+    registrations_publisher_ = advertiseOutput<RegistrationsMessage>("registrations");
+    candidates_subscriber_ = subscribeInput("candidates", &RegistrationNodelet::onCandidates, this);
     startReconfigure();
   }
 

@@ -78,7 +78,7 @@ private:
     synchronizer_ = std::make_unique<message_filters::Synchronizer<SyncPolicy>>(
         SyncPolicy(queue_size), color_subscriber_, depth_subscriber_, info_subscriber_);
     synchronizer_->registerCallback(&RgbdIngestionNodelet::onFrame, this);
-    frame_publisher_ = node().advertise<FrameMessage>("frame", stageParams().queue_size);
+    frame_publisher_ = advertiseOutput<FrameMessage>("frame");
     if (!up_frame_.empty())
     {
       tf_buffer_ = std::make_unique<tf2_ros::Buffer>();

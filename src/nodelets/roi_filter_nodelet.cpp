@@ -28,11 +28,10 @@ private:
   void initStage(const ParamLookup& lookup) override
   {
     front_end_ = std::make_unique<FrontEnd>(catalogueFrom(lookup), frontEndParamsFrom(lookup));
-    const int queue_size = stageParams().queue_size;
-    candidates_publisher_ = node().advertise<CandidatesMessage>("candidates", queue_size);
+    candidates_publisher_ = advertiseOutput<CandidatesMessage>("candidates");
     debug_image_publisher_ = node().advertise<sensor_msgs::Image>("debug_image", 1);
     debug_cloud_publisher_ = node().advertise<sensor_msgs::PointCloud2>("debug_cloud", 1);
-    segments_subscriber_ = node().subscribe("segments", queue_size, &RoiFilterNodelet::onSegments, this);
+    segments_subscriber_ = subscribeInput("segments", &RoiFilterNodelet::onSegments, this);
   }
 
   void onSegments(const SegmentsMessageConstPtr& segments)

@@ -19,8 +19,8 @@ private:
   void initStage(const ParamLookup& lookup) override
   {
     front_end_ = std::make_unique<FrontEnd>(catalogueFrom(lookup), frontEndParamsFrom(lookup));
-    segments_publisher_ = node().advertise<SegmentsMessage>("segments", stageParams().queue_size);
-    frame_subscriber_ = node().subscribe("frame", stageParams().queue_size, &SegmentationNodelet::onFrame, this);
+    segments_publisher_ = advertiseOutput<SegmentsMessage>("segments");
+    frame_subscriber_ = subscribeInput("frame", &SegmentationNodelet::onFrame, this);
     NODELET_INFO("segmentation mode %s", toString(front_end_->params().mode).c_str());
   }
 

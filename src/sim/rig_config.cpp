@@ -73,12 +73,8 @@ namespace
 void readCamera(const ParamReader& read, PinholeCamera& camera)
 {
   if (const auto resolution = read.text("resolution")) camera = d415ColourMode(*resolution);
-  read.integer("width", camera.width_px);
-  read.integer("height", camera.height_px);
-  read.number("fx", camera.fx_px);
-  read.number("fy", camera.fy_px);
-  read.number("cx", camera.cx_px);
-  read.number("cy", camera.cy_px);
+  readBound(read, {{"width", &camera.width_px}, {"height", &camera.height_px}, {"fx", &camera.fx_px},
+                   {"fy", &camera.fy_px}, {"cx", &camera.cx_px}, {"cy", &camera.cy_px}});
   camera.validate();
 }
 
@@ -88,17 +84,41 @@ void readSensor(const ParamReader& read, SensorModel& sensor)
   if (const auto model = read.text("depth_model"))
     sensor = depthModelFromString(*model) == DepthModel::kD4xx ? SensorModel::d4xx() : SensorModel();
   if (const auto lighting = read.text("lighting")) sensor.lighting = lightingFromString(*lighting);
-  read.number("baseline_m", sensor.baseline_m);
-  read.number("subpixel_px", sensor.subpixel_px);
-  read.number("dropout_probability", sensor.dropout_probability);
-  read.number("flying_pixel_probability", sensor.flying_pixel_probability);
-  read.flag("stereo_shadow", sensor.stereo_shadow);
-  read.integer("stereo_window_px", sensor.stereo_window_px);
-  read.integer("edge_fattening_px", sensor.edge_fattening_px);
-  read.number("disparity_step_px", sensor.disparity_step_px);
-  read.integer("depth_offset_u_px", sensor.depth_offset_u_px);
-  read.integer("depth_offset_v_px", sensor.depth_offset_v_px);
+  readBound(read, {{"baseline_m", &sensor.baseline_m},
+                   {"subpixel_px", &sensor.subpixel_px},
+                   {"dropout_probability", &sensor.dropout_probability},
+                   {"flying_pixel_probability", &sensor.flying_pixel_probability},
+                   {"stereo_shadow", &sensor.stereo_shadow},
+                   {"stereo_window_px", &sensor.stereo_window_px},
+                   {"edge_fattening_px", &sensor.edge_fattening_px},
+                   {"disparity_step_px", &sensor.disparity_step_px},
+                   {"depth_offset_u_px", &sensor.depth_offset_u_px},
+                   {"depth_offset_v_px", &sensor.depth_offset_v_px}});
   sensor.validate();
+}
+
+ParamBindings sceneBindings(SceneParams& scene)
+{
+  return {{"min_distance_m", &scene.min_distance_m},
+          {"max_distance_m", &scene.max_distance_m},
+          {"min_elevation_deg", &scene.min_elevation_deg},
+          {"max_elevation_deg", &scene.max_elevation_deg},
+          {"max_tilt_deg", &scene.max_tilt_deg},
+          {"max_pile_bricks", &scene.max_pile_bricks},
+          {"max_rows", &scene.max_rows},
+          {"max_layers", &scene.max_layers},
+          {"max_gap_m", &scene.max_gap_m},
+          {"zero_gap_probability", &scene.zero_gap_probability},
+          {"max_row_length_m", &scene.max_row_length_m},
+          {"pallet_length_m", &scene.pallet_length_m},
+          {"pallet_width_m", &scene.pallet_width_m},
+          {"missing_box_probability", &scene.missing_box_probability},
+          {"layer_offset_m", &scene.layer_offset_m},
+          {"max_table_boxes", &scene.max_table_boxes},
+          {"upright_probability", &scene.upright_probability},
+          {"stack_probability", &scene.stack_probability},
+          {"edge_radius_m", &scene.edge_radius_m},
+          {"markings", &scene.markings}};
 }
 
 void readScene(const ParamReader& read, SceneParams& scene)
@@ -107,26 +127,7 @@ void readScene(const ParamReader& read, SceneParams& scene)
   if (const auto kind = read.text("scene")) scene = SceneParams::defaultsFor(sceneKindFromString(*kind));
   if (const auto types = read.text("types")) scene.types = splitList(*types);
   if (const auto view = read.text("view")) scene.applyView(*view);
-  read.number("min_distance_m", scene.min_distance_m);
-  read.number("max_distance_m", scene.max_distance_m);
-  read.number("min_elevation_deg", scene.min_elevation_deg);
-  read.number("max_elevation_deg", scene.max_elevation_deg);
-  read.number("max_tilt_deg", scene.max_tilt_deg);
-  read.integer("max_pile_bricks", scene.max_pile_bricks);
-  read.integer("max_rows", scene.max_rows);
-  read.integer("max_layers", scene.max_layers);
-  read.number("max_gap_m", scene.max_gap_m);
-  read.number("zero_gap_probability", scene.zero_gap_probability);
-  read.number("max_row_length_m", scene.max_row_length_m);
-  read.number("pallet_length_m", scene.pallet_length_m);
-  read.number("pallet_width_m", scene.pallet_width_m);
-  read.number("missing_box_probability", scene.missing_box_probability);
-  read.number("layer_offset_m", scene.layer_offset_m);
-  read.integer("max_table_boxes", scene.max_table_boxes);
-  read.number("upright_probability", scene.upright_probability);
-  read.number("stack_probability", scene.stack_probability);
-  read.number("edge_radius_m", scene.edge_radius_m);
-  read.flag("markings", scene.markings);
+  readBound(read, sceneBindings(scene));
 }
 }  // namespace
 

@@ -12,30 +12,26 @@ namespace sim
 {
 namespace
 {
-const EnumNames<Lighting>& lightingNames()
-{
-  static const EnumNames<Lighting> names{
-      {Lighting::kNormal, "normal"}, {Lighting::kSunlight, "sunlight"}, {Lighting::kLowLight, "low_light"}};
-  return names;
-}
+constexpr EnumName<Lighting> kLightingNames[] = {{Lighting::kNormal, "normal"},
+                                                 {Lighting::kSunlight, "sunlight"},
+                                                 {Lighting::kLowLight, "low_light"}};
 
-const EnumNames<DepthModel>& depthModelNames()
-{
-  static const EnumNames<DepthModel> names{{DepthModel::kIdeal, "ideal"}, {DepthModel::kD4xx, "d4xx"}};
-  return names;
-}
+constexpr EnumName<DepthModel> kDepthModelNames[] = {{DepthModel::kIdeal, "ideal"}, {DepthModel::kD4xx, "d4xx"}};
 }  // namespace
 
-Lighting lightingFromString(const std::string& name) { return parseEnumName("parameter 'lighting'", name, lightingNames()); }
+Lighting lightingFromString(const std::string& name)
+{
+  return parseEnumName("parameter 'lighting'", name, kLightingNames);
+}
 
-std::string toString(Lighting lighting) { return enumName(lighting, lightingNames()); }
+std::string toString(Lighting lighting) { return enumName(lighting, kLightingNames); }
 
 DepthModel depthModelFromString(const std::string& name)
 {
-  return parseEnumName("parameter 'depth_model'", name, depthModelNames());
+  return parseEnumName("parameter 'depth_model'", name, kDepthModelNames);
 }
 
-std::string toString(DepthModel model) { return enumName(model, depthModelNames()); }
+std::string toString(DepthModel model) { return enumName(model, kDepthModelNames); }
 
 SensorModel SensorModel::d4xx()
 {

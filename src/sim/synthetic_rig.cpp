@@ -450,13 +450,8 @@ private:
       BrickTruth& truth = truths[i];
       const double area_px = unoccludedTopFaceArea(truth);
       truth.visible_fraction = area_px > 0.0 ? std::min(1.0, truth.visible_top_pixels / area_px) : 0.0;
-      const TopFaceVisibility visibility = topFaceVisibility(scene_, caster_, camera_, i);
-      truth.top_face_complete = visibility.complete();
-      truth.top_face_cut_by_border = visibility.cut_by_border;
-      truth.top_face_occluded = visibility.occluded;
-      truth.top_edge_visible_fraction = visibility.edge_visible_fraction;
-      truth.top_face_tilt_deg = visibility.tilt_deg;
-      truth.up_face = visibility.up_face;
+      truth.top_face = topFaceVisibility(scene_, caster_, camera_, i);
+      truth.top_face_complete = truth.top_face.complete();
       truth.touching_neighbours = touching[i];
     }
     return truths;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "brick_pose/common/angles.h"
+
 namespace brick_pose
 {
 namespace sim
@@ -53,7 +55,7 @@ TopFaceVisibility topFaceVisibility(const Scene& scene, const RayCaster& caster,
   TopFaceVisibility result;
   const PlacedBrick& brick = scene.bricks[brick_index];
   const Eigen::Matrix3d world_R_brick = brick.world_T_brick.linear();
-  result.tilt_deg = std::acos(std::clamp(world_R_brick(2, 2), -1.0, 1.0)) * 180.0 / M_PI;
+  result.tilt_deg = std::acos(std::clamp(world_R_brick(2, 2), -1.0, 1.0)) * kRadToDeg;
   result.up_face = faceMostUp(world_R_brick);
 
   const Eigen::Isometry3d& camera_T_brick = caster.cameraTBricks()[brick_index];

@@ -37,9 +37,9 @@ SyntheticFrameMessages toMessages(const sim::SyntheticFrame& frame, const ros::T
     brick.dimensions.z = truth.dimensions_m.z();
     brick.visible_fraction = truth.visible_fraction;
     brick.top_face_complete = truth.top_face_complete;
-    brick.top_face_cut_by_border = truth.top_face_cut_by_border;
-    brick.top_face_occluded = truth.top_face_occluded;
-    brick.top_face_tilt_deg = truth.top_face_tilt_deg;
+    brick.top_face_cut_by_border = truth.top_face.cut_by_border;
+    brick.top_face_occluded = truth.top_face.occluded;
+    brick.top_face_tilt_deg = truth.top_face.tilt_deg;
     brick.touching_neighbours = truth.touching_neighbours;
     messages.truth->bricks.push_back(brick);
 

@@ -240,12 +240,12 @@ TEST(TopFaceTruth, WholeFaceInViewIsComplete)
   const SyntheticFrame frame = renderVga(boxSeenFromAbove(1.2));
   const BrickTruth& truth = frame.truth[0];
   EXPECT_TRUE(truth.top_face_complete);
-  EXPECT_FALSE(truth.top_face_cut_by_border);
-  EXPECT_FALSE(truth.top_face_occluded);
-  for (double fraction : truth.top_edge_visible_fraction)
+  EXPECT_FALSE(truth.top_face.cut_by_border);
+  EXPECT_FALSE(truth.top_face.occluded);
+  for (double fraction : truth.top_face.edge_visible_fraction)
     EXPECT_DOUBLE_EQ(fraction, 1.0);
-  EXPECT_EQ(truth.up_face, CuboidFace::kTop);
-  EXPECT_NEAR(truth.top_face_tilt_deg, 0.0, 1e-6);
+  EXPECT_EQ(truth.top_face.up_face, CuboidFace::kTop);
+  EXPECT_NEAR(truth.top_face.tilt_deg, 0.0, 1e-6);
 }
 
 TEST(TopFaceTruth, FaceCutByTheImageBorderIsNotComplete)
@@ -256,9 +256,9 @@ TEST(TopFaceTruth, FaceCutByTheImageBorderIsNotComplete)
   const BrickTruth& truth = frame.truth[0];
   ASSERT_GT(truth.visible_top_pixels, 1000) << "the box is mostly in view";
   EXPECT_FALSE(truth.top_face_complete);
-  EXPECT_TRUE(truth.top_face_cut_by_border);
-  EXPECT_FALSE(truth.top_face_occluded);
-  const auto& edges = truth.top_edge_visible_fraction;
+  EXPECT_TRUE(truth.top_face.cut_by_border);
+  EXPECT_FALSE(truth.top_face.occluded);
+  const auto& edges = truth.top_face.edge_visible_fraction;
   EXPECT_LT(*std::min_element(edges.begin(), edges.end()), 1.0);
 }
 
@@ -271,7 +271,7 @@ TEST(TopFaceTruth, FaceUnderAnotherBoxIsNotComplete)
   scene.bricks.push_back(cover);
   const SyntheticFrame frame = renderVga(scene);
   EXPECT_FALSE(frame.truth[0].top_face_complete);
-  EXPECT_TRUE(frame.truth[0].top_face_occluded);
+  EXPECT_TRUE(frame.truth[0].top_face.occluded);
   EXPECT_TRUE(frame.truth[1].top_face_complete) << "the box on top is whole";
 }
 
@@ -303,7 +303,7 @@ TEST(TopFaceTruth, TallerNeighbourSeenObliquelyHidesTheSharedEdge)
   scene.world_T_camera = lookAt(Eigen::Vector3d(0.0, 0.0, 0.2), 1.2, 45.0, 90.0);
   const SyntheticFrame frame = renderVga(scene);
   EXPECT_FALSE(frame.truth[0].top_face_complete);
-  EXPECT_TRUE(frame.truth[0].top_face_occluded);
+  EXPECT_TRUE(frame.truth[0].top_face.occluded);
   EXPECT_TRUE(frame.truth[1].top_face_complete);
 }
 
@@ -317,7 +317,7 @@ TEST(TopFaceTruth, TableViewsShowLargeSideFacesAndNoUprightTopIsComplete)
   for (std::uint64_t seed = 0; seed < 4; ++seed)
     for (const BrickTruth& truth : rig.render(generator.generate(seed), seed).truth)
     {
-      EXPECT_NEAR(truth.top_face_tilt_deg, 90.0, 1e-6);
+      EXPECT_NEAR(truth.top_face.tilt_deg, 90.0, 1e-6);
       EXPECT_FALSE(truth.top_face_complete) << "seed " << seed << " box " << truth.instance_id;
       large_vertical_tops += truth.visible_top_pixels > 2000 ? 1 : 0;
     }
@@ -337,8 +337,8 @@ TEST(TopFaceTruth, UprightBoxFacingTheCameraIsNotACompleteTop)
   const SyntheticFrame frame = renderVga(scene);
   const BrickTruth& truth = frame.truth[0];
   ASSERT_GT(truth.visible_top_pixels, 5000) << "the catalogue top face is in plain view";
-  EXPECT_NEAR(truth.top_face_tilt_deg, 90.0, 1e-6);
-  EXPECT_NE(truth.up_face, CuboidFace::kTop);
+  EXPECT_NEAR(truth.top_face.tilt_deg, 90.0, 1e-6);
+  EXPECT_NE(truth.top_face.up_face, CuboidFace::kTop);
   EXPECT_FALSE(truth.top_face_complete) << "a vertical face is not a top";
 }
 }  // namespace sim

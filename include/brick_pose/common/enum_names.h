@@ -3,6 +3,7 @@
 // and the error's list of valid values read the same table, so they cannot
 // disagree.
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,12 +12,14 @@
 
 namespace brick_pose
 {
+/// A name table: `constexpr EnumName<E> kNames[] = {{E::kA, "a"}, ...};`
+/// (constant-initialised, so that it can be read at any time).
 template <typename Enum>
-using EnumNames = std::vector<std::pair<Enum, const char*>>;
+using EnumName = std::pair<Enum, const char*>;
 
 /// The value named `text`; ConfigError naming `what` and the valid names otherwise.
-template <typename Enum>
-Enum parseEnumName(const std::string& what, const std::string& text, const EnumNames<Enum>& names)
+template <typename Enum, std::size_t N>
+Enum parseEnumName(const std::string& what, const std::string& text, const EnumName<Enum> (&names)[N])
 {
   std::string valid;
   for (const auto& [value, name] : names)
@@ -28,8 +31,8 @@ Enum parseEnumName(const std::string& what, const std::string& text, const EnumN
 }
 
 /// The name of `value`, or "unknown" for a value outside the table.
-template <typename Enum>
-const char* enumName(Enum value, const EnumNames<Enum>& names)
+template <typename Enum, std::size_t N>
+const char* enumName(Enum value, const EnumName<Enum> (&names)[N])
 {
   for (const auto& [known, name] : names)
     if (known == value) return name;

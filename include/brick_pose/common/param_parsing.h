@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace brick_pose
@@ -40,4 +41,33 @@ public:
 private:
   ParamLookup lookup_;
 };
+
+/// One named parameter bound to the struct field that holds its value. One
+/// table of bindings both reads a struct's parameters and reports the values
+/// in effect, so that the two cannot drift apart.
+struct ParamBinding
+{
+  std::string name;
+  std::variant<double*, int*, bool*> field;
+};
+using ParamBindings = std::vector<ParamBinding>;
+
+/// Reads each bound parameter that is set into its field; unset ones keep
+/// their value (the struct's default).
+void readBound(const ParamReader& read, const ParamBindings& bindings);
+
+/// The text of each bound field's value, by name: numbers to 10 significant
+/// digits, flags as true/false.
+std::map<std::string, std::string> boundValues(const ParamBindings& bindings);
+
+/// Reads a params struct through its bindings table and validates it.
+/// bind: returns the table of a struct's fields (e.g. stageBindings).
+template <typename Params>
+Params readValidated(const ParamLookup& lookup, ParamBindings (*bind)(Params&))
+{
+  Params params;
+  readBound(ParamReader(lookup), bind(params));
+  params.validate();
+  return params;
+}
 }  // namespace brick_pose

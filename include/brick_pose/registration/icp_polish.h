@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 
+#include "brick_pose/common/elapsed.h"
 #include "brick_pose/registration/point_set.h"
 #include "brick_pose/registration/super4pcs.h"
 
@@ -18,10 +19,6 @@ namespace brick_pose
 {
 namespace registration
 {
-using SteadyClock = std::chrono::steady_clock;
-
-double secondsSince(SteadyClock::time_point start);
-
 /// The tolerances that follow from the parameters and the sample density.
 struct SearchScales
 {

@@ -22,6 +22,14 @@ public:
 
   double maxRadius() const { return 0.5 * cell_size_m_; }
 
+  /// Rebuilds the grid for queries up to radius_m once its cells have grown
+  /// too coarse for them: a narrow query in a coarse cell scans many points.
+  /// Iterative fits call it as their match radius shrinks.
+  void shrinkTo(double radius_m)
+  {
+    if (points_ && radius_m < kRebuildBelowFraction * maxRadius()) *this = PointGrid(*points_, radius_m);
+  }
+
   /// Index of the nearest point within radius_m (<= maxRadius()) of `query`,
   /// or -1 when there is none.
   int nearestWithin(const Eigen::Vector3d& query, double radius_m) const;
@@ -42,6 +50,7 @@ private:
     std::uint32_t end = 0;
   };
   static constexpr std::uint64_t kEmptyKey = ~std::uint64_t(0);
+  static constexpr double kRebuildBelowFraction = 0.7;
 
   static std::uint64_t packKey(std::int64_t x, std::int64_t y, std::int64_t z);
   const Slot* findCell(std::uint64_t key) const;

@@ -39,6 +39,21 @@ protected:
   /// The manager's worker-pool node handle in the pipeline's namespace.
   ros::NodeHandle& node() { return getNodeHandle(); }
 
+  /// A publisher of the stage's output on the relative `topic`, queue_size deep.
+  template <typename Message>
+  ros::Publisher advertiseOutput(const std::string& topic)
+  {
+    return node().advertise<Message>(topic, stage_params_.queue_size);
+  }
+
+  /// A subscriber to the stage's input on the relative `topic`, queue_size deep.
+  template <typename Message, typename Stage>
+  ros::Subscriber subscribeInput(const std::string& topic,
+                                 void (Stage::*callback)(const boost::shared_ptr<const Message>&), Stage* stage)
+  {
+    return node().subscribe(topic, stage_params_.queue_size, callback, stage);
+  }
+
   /// False, counted and warned about (throttled), when `frame` is already
   /// older than max_latency_ms: a stage spends no time on it.
   bool withinLatencyBudget(const FrameMessage& frame);

@@ -25,4 +25,11 @@ struct Segment
   /// Number of non-zero mask pixels.
   int area_px = 0;
 };
+
+/// The segment whose footprint is `mask_px` (CV_8UC1, non-zero inside) over
+/// `box_px` of the image: its area and the indices of its pixels that have
+/// depth in `depth_m` (CV_32FC1, NaN where none). Used when a segment is cut
+/// into parts.
+Segment segmentFromMask(const cv::Mat& mask_px, const cv::Rect& box_px, const cv::Mat& depth_m,
+                        const std::string& type_name);
 }  // namespace brick_pose

@@ -78,6 +78,21 @@ enum class CuboidFace : unsigned char
   kMinusY = 6,
 };
 
+/// Whether a brick's top face is wholly in view, and why not: decided by
+/// rays to samples along its four edges (sim/top_face_visibility.h).
+struct TopFaceVisibility
+{
+  bool facing_camera = false;
+  bool cut_by_border = false;
+  bool occluded = false;
+  std::array<double, 4> edge_visible_fraction{{0.0, 0.0, 0.0, 0.0}};
+  double tilt_deg = 0.0;  // brick +z against the world's up
+  CuboidFace up_face = CuboidFace::kTop;
+
+  /// Facing the camera, at most kTopFaceMaxTiltDeg from up, every edge sample seen.
+  bool complete() const;
+};
+
 /// Ground truth of one brick in one rendered frame.
 struct BrickTruth
 {
@@ -96,21 +111,13 @@ struct BrickTruth
   /// the image and is not hidden by another brick. A detector that calls a
   /// face "complete" when this is false gave a confident wrong answer.
   bool top_face_complete = false;
-  /// Some edge sample of the top face falls outside the image (or within one
-  /// pixel of its border).
-  bool top_face_cut_by_border = false;
-  /// Some in-image edge sample of the top face is hidden by another brick.
-  bool top_face_occluded = false;
-  /// Per edge, corner k to corner k+1 of topFaceCornersInBrick(): the
-  /// fraction of its samples that are in the image and unoccluded (0 for all
-  /// when the face looks away from the camera).
-  std::array<double, 4> top_edge_visible_fraction{{0.0, 0.0, 0.0, 0.0}};
-  /// Angle between the brick's +z (out of the top face) and the world's up.
-  /// Near 90 for a box standing on its side or end: its catalogue top face is
-  /// then vertical and must not be taken for a top.
-  double top_face_tilt_deg = 0.0;
-  /// The face whose outward normal points most nearly up in the world.
-  CuboidFace up_face = CuboidFace::kTop;
+  /// Its edges as seen: cut by the border (within one pixel of it), hidden
+  /// by another brick, the fraction of each edge's samples seen (corner k to
+  /// corner k+1 of topFaceCornersInBrick()), the tilt of the brick's +z from
+  /// the world's up (near 90 for a box standing on a side or an end: its
+  /// catalogue top is then vertical and must not be taken for a top) and the
+  /// face that points most nearly up.
+  TopFaceVisibility top_face;
   /// Other bricks with a side face within kTouchingToleranceM of one of this
   /// brick's side faces (side by side or end to end, any gap 0..3 mm).
   int touching_neighbours = 0;

@@ -15,19 +15,6 @@ namespace brick_pose
 {
 namespace sim
 {
-struct TopFaceVisibility
-{
-  bool facing_camera = false;
-  bool cut_by_border = false;
-  bool occluded = false;
-  std::array<double, 4> edge_visible_fraction{{0.0, 0.0, 0.0, 0.0}};
-  double tilt_deg = 0.0;  // brick +z against the world's up
-  CuboidFace up_face = CuboidFace::kTop;
-
-  /// Facing the camera, at most kTopFaceMaxTiltDeg from up, every edge sample seen.
-  bool complete() const;
-};
-
 /// Samples per edge: at 1280x720 a 1.8 m edge seen from 0.6 m spans ~2700
 /// pixels, so 64 samples leave gaps; occluders narrower than ~1/64 of an edge
 /// can slip through, which the border and neighbour cases this exists for do

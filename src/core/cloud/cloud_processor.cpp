@@ -12,34 +12,25 @@
 #include <pcl/search/kdtree.h>
 #include <pcl/surface/mls.h>
 
+#include "brick_pose/common/elapsed.h"
 #include "brick_pose/common/errors.h"
 
 namespace brick_pose
 {
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-void require(bool condition, const char* field, const char* rule)
-{
-  if (!condition) throw ConfigError(std::string("cloud processing: ") + field + " " + rule);
-}
 }  // namespace
 
 void CloudProcessorParams::validate() const
 {
-  require(std::isfinite(min_depth_m) && min_depth_m >= 0.0, "min_depth_m", "must be >= 0");
-  require(std::isfinite(max_depth_m) && max_depth_m > min_depth_m, "max_depth_m", "must be > min_depth_m");
-  require(outlier_mean_k >= 1, "outlier_mean_k", "must be >= 1");
-  require(outlier_stddev_multiplier > 0.0, "outlier_stddev_multiplier", "must be > 0");
-  require(voxel_leaf_m > 0.0, "voxel_leaf_m", "must be > 0");
-  require(mls_search_radius_m > 0.0, "mls_search_radius_m", "must be > 0");
-  require(mls_polynomial_order >= 0 && mls_polynomial_order <= 3, "mls_polynomial_order", "must be 0..3");
+  const ParamCheck check("cloud processing");
+  check.require(std::isfinite(min_depth_m) && min_depth_m >= 0.0, "min_depth_m", "must be >= 0");
+  check.require(std::isfinite(max_depth_m) && max_depth_m > min_depth_m, "max_depth_m", "must be > min_depth_m");
+  check.require(outlier_mean_k >= 1, "outlier_mean_k", "must be >= 1");
+  check.require(outlier_stddev_multiplier > 0.0, "outlier_stddev_multiplier", "must be > 0");
+  check.require(voxel_leaf_m > 0.0, "voxel_leaf_m", "must be > 0");
+  check.require(mls_search_radius_m > 0.0, "mls_search_radius_m", "must be > 0");
+  check.require(mls_polynomial_order >= 0 && mls_polynomial_order <= 3, "mls_polynomial_order", "must be 0..3");
 }
 
 CloudProcessingTimings& CloudProcessingTimings::operator+=(const CloudProcessingTimings& other)
@@ -129,7 +120,7 @@ ProcessedCloud CloudProcessor::process(const pcl::PointCloud<pcl::PointXYZ>::Con
 {
   ProcessedCloud result;
   pcl::PointCloud<pcl::PointXYZ>::ConstPtr current = cloud;
-  auto start = Clock::now();
+  auto start = SteadyClock::now();
   if (params_.crop_enabled)
   {
     current = crop(current);
@@ -138,19 +129,19 @@ ProcessedCloud CloudProcessor::process(const pcl::PointCloud<pcl::PointXYZ>::Con
   // The voxel grid runs before outlier removal, unlike the paper: the
   // statistics are the same on the thinned cloud and the k-NN search is far
   // cheaper on it.
-  start = Clock::now();
+  start = SteadyClock::now();
   if (params_.voxel_enabled && !current->empty())
   {
     current = downsample(current);
     result.timings.voxel_ms = millisecondsSince(start);
   }
-  start = Clock::now();
+  start = SteadyClock::now();
   if (params_.outlier_removal_enabled && !current->empty())
   {
     current = removeOutliers(current);
     result.timings.outlier_removal_ms = millisecondsSince(start);
   }
-  start = Clock::now();
+  start = SteadyClock::now();
   if (params_.mls_enabled && !current->empty())
   {
     result.with_normals = smooth(current);

@@ -93,4 +93,29 @@ void ParamReader::flag(const std::string& name, bool& target) const
 {
   if (const auto value = lookup_(name)) target = parseBool(name, *value);
 }
+
+void readBound(const ParamReader& read, const ParamBindings& bindings)
+{
+  for (const ParamBinding& binding : bindings)
+  {
+    if (auto* number = std::get_if<double*>(&binding.field)) read.number(binding.name, **number);
+    else if (auto* integer = std::get_if<int*>(&binding.field)) read.integer(binding.name, **integer);
+    else read.flag(binding.name, *std::get<bool*>(binding.field));
+  }
+}
+
+std::map<std::string, std::string> boundValues(const ParamBindings& bindings)
+{
+  std::map<std::string, std::string> values;
+  for (const ParamBinding& binding : bindings)
+  {
+    std::ostringstream text;
+    text.precision(10);
+    if (auto* flag = std::get_if<bool*>(&binding.field)) text << (**flag ? "true" : "false");
+    else if (auto* integer = std::get_if<int*>(&binding.field)) text << **integer;
+    else text << *std::get<double*>(binding.field);
+    values[binding.name] = text.str();
+  }
+  return values;
+}
 }  // namespace brick_pose

@@ -6,17 +6,14 @@ namespace brick_pose
 {
 namespace
 {
-const EnumNames<CorrectionMode>& correctionModeNames()
-{
-  static const EnumNames<CorrectionMode> names{{CorrectionMode::kPaper, "paper"}, {CorrectionMode::kFull, "full"}};
-  return names;
-}
+constexpr EnumName<CorrectionMode> kCorrectionModeNames[] = {{CorrectionMode::kPaper, "paper"},
+                                                             {CorrectionMode::kFull, "full"}};
 }  // namespace
 
 CorrectionMode parseCorrectionMode(const std::string& name)
 {
-  return parseEnumName("correction mode", name, correctionModeNames());
+  return parseEnumName("correction mode", name, kCorrectionModeNames);
 }
 
-const char* toString(CorrectionMode mode) { return enumName(mode, correctionModeNames()); }
+const char* toString(CorrectionMode mode) { return enumName(mode, kCorrectionModeNames); }
 }  // namespace brick_pose

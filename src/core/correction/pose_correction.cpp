@@ -6,14 +6,13 @@
 #include <sstream>
 #include <string>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
 
 namespace brick_pose
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kRadPerDeg = kPi / 180.0;
 // Below this a vector has no usable direction (metres or unit-less).
 constexpr double kTinyLength = 1e-9;
 // A rotation matrix whose R^T R differs from I by more than this is not one.
@@ -101,17 +100,17 @@ Eigen::Vector3d validateFace(const MeasuredFace& face, const BrickType& brick,
   if (distance_m < kTinyLength)
     reject("face centroid is at the camera origin");
   const double cos_viewing = normal.dot(-face.centroid_m / distance_m);
-  const double cos_max_viewing = std::cos(parameters.max_viewing_angle_deg * kRadPerDeg);
+  const double cos_max_viewing = std::cos(parameters.max_viewing_angle_deg * kDegToRad);
   if (cos_viewing < -cos_max_viewing)
     reject("face normal points away from the camera (it must point toward it)");
   if (cos_viewing < cos_max_viewing)
     reject("face normal is nearly perpendicular to the line of sight (viewing angle " +
-           formatNumber(std::acos(std::max(-1.0, std::min(1.0, cos_viewing))) / kRadPerDeg, 1) + " deg, limit " +
+           formatNumber(std::acos(std::max(-1.0, std::min(1.0, cos_viewing))) * kRadToDeg, 1) + " deg, limit " +
            formatNumber(parameters.max_viewing_angle_deg, 1) + " deg)");
 
   const double out_of_plane_rad = angleOutOfPlane(face.t2_m - face.t1_m, normal);
-  if (out_of_plane_rad > parameters.max_t1_t2_out_of_plane_deg * kRadPerDeg)
-    reject("T1->T2 is " + formatNumber(out_of_plane_rad / kRadPerDeg, 1) +
+  if (out_of_plane_rad > parameters.max_t1_t2_out_of_plane_deg * kDegToRad)
+    reject("T1->T2 is " + formatNumber(out_of_plane_rad * kRadToDeg, 1) +
            " deg out of the face plane (limit " + formatNumber(parameters.max_t1_t2_out_of_plane_deg, 1) +
            " deg): it is (nearly) parallel to the face normal");
   return normal;
@@ -133,7 +132,7 @@ PoseCorrection correctLikePaper(const Eigen::Isometry3d& pose, const BrickType& 
   const Eigen::Matrix3d& rotation = pose.linear();
   const Eigen::Vector3d pose_z = rotation.col(2);
   const Eigen::Vector3d measured_direction = face.t2_m - face.t1_m;
-  if (angleOutOfPlane(measured_direction, pose_z) > parameters.max_t1_t2_out_of_plane_deg * kRadPerDeg)
+  if (angleOutOfPlane(measured_direction, pose_z) > parameters.max_t1_t2_out_of_plane_deg * kDegToRad)
     reject("T1->T2 is (nearly) parallel to the registration pose's z axis; no yaw can be measured about it");
 
   // A2 anywhere on the model's positive x axis inside the face; only the
@@ -164,8 +163,8 @@ PoseCorrection correctAllSixDof(const Eigen::Isometry3d& pose, const MeasuredFac
   PoseCorrection result;
   result.mode = CorrectionMode::kFull;
   result.tilt_rad = std::atan2(pose_z.cross(normal).norm(), pose_z.dot(normal));
-  if (result.tilt_rad > parameters.max_tilt_correction_deg * kRadPerDeg)
-    reject("face normal is " + formatNumber(result.tilt_rad / kRadPerDeg, 1) +
+  if (result.tilt_rad > parameters.max_tilt_correction_deg * kDegToRad)
+    reject("face normal is " + formatNumber(result.tilt_rad * kRadToDeg, 1) +
            " deg from the registration pose's z axis (limit " +
            formatNumber(parameters.max_tilt_correction_deg, 1) + " deg): the registration is wrong, not tilted");
 
@@ -186,12 +185,12 @@ PoseCorrection correctAllSixDof(const Eigen::Isometry3d& pose, const MeasuredFac
 
 double PoseCorrection::yawDeg() const
 {
-  return yaw_rad / kRadPerDeg;
+  return yaw_rad * kRadToDeg;
 }
 
 double PoseCorrection::tiltDeg() const
 {
-  return tilt_rad / kRadPerDeg;
+  return tilt_rad * kRadToDeg;
 }
 
 PoseCorrection correctPose(const Eigen::Isometry3d& T_cam_brick, const BrickType& brick, const MeasuredFace& face,

@@ -6,18 +6,15 @@ namespace brick_pose
 {
 namespace
 {
-const EnumNames<RefinementMethod>& refinementMethodNames()
-{
-  static const EnumNames<RefinementMethod> names{
-      {RefinementMethod::kCorrection, "correction"}, {RefinementMethod::kIcp, "icp"}, {RefinementMethod::kNone, "none"}};
-  return names;
-}
+constexpr EnumName<RefinementMethod> kRefinementMethodNames[] = {{RefinementMethod::kCorrection, "correction"},
+                                                                 {RefinementMethod::kIcp, "icp"},
+                                                                 {RefinementMethod::kNone, "none"}};
 }  // namespace
 
 RefinementMethod parseRefinementMethod(const std::string& name)
 {
-  return parseEnumName("refinement method", name, refinementMethodNames());
+  return parseEnumName("refinement method", name, kRefinementMethodNames);
 }
 
-const char* toString(RefinementMethod method) { return enumName(method, refinementMethodNames()); }
+const char* toString(RefinementMethod method) { return enumName(method, kRefinementMethodNames); }
 }  // namespace brick_pose

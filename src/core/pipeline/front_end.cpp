@@ -7,6 +7,8 @@
 #include <optional>
 #include <sstream>
 
+#include "brick_pose/common/angles.h"
+#include "brick_pose/common/elapsed.h"
 #include "brick_pose/common/enum_names.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/frame/organized_cloud.h"
@@ -16,14 +18,6 @@ namespace brick_pose
 {
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-constexpr double kPi = 3.14159265358979323846;
 
 /// One segment made of the footprints of two candidates.
 Segment joinSegments(const BrickCandidate& a, const BrickCandidate& b)
@@ -116,21 +110,17 @@ std::string rejectionCategory(const std::string& reason)
 
 namespace
 {
-const EnumNames<SegmentationMode>& segmentationModeNames()
-{
-  static const EnumNames<SegmentationMode> names{{SegmentationMode::kHsv, "hsv"},
-                                                 {SegmentationMode::kRegionGrowing, "region_growing"},
-                                                 {SegmentationMode::kColourFree, "colour_free"}};
-  return names;
-}
+constexpr EnumName<SegmentationMode> kSegmentationModeNames[] = {{SegmentationMode::kHsv, "hsv"},
+                                                                 {SegmentationMode::kRegionGrowing, "region_growing"},
+                                                                 {SegmentationMode::kColourFree, "colour_free"}};
 }  // namespace
 
 SegmentationMode parseSegmentationMode(const std::string& name)
 {
-  return parseEnumName("parameter 'mode' (segmentation)", name, segmentationModeNames());
+  return parseEnumName("parameter 'mode' (segmentation)", name, kSegmentationModeNames);
 }
 
-std::string toString(SegmentationMode mode) { return enumName(mode, segmentationModeNames()); }
+std::string toString(SegmentationMode mode) { return enumName(mode, kSegmentationModeNames); }
 
 CloudProcessorParams FrontEndParams::defaultSegmentCloudParams()
 {
@@ -186,7 +176,7 @@ std::vector<Segment> FrontEnd::colourFreeSegments(const RgbdFrame& frame, const 
 void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>& segments,
                               FrontEndResult& result) const
 {
-  const auto roi_start = Clock::now();
+  const auto roi_start = SteadyClock::now();
   const double cloud_ms_before = result.timings.cloud.total();
   // Each segment's outcome in its own slot: the merge below keeps the
   // segments' order whatever thread filtered them.
@@ -196,7 +186,7 @@ void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>
   const FrameContext context = frameContext(frame, segments);
   result.up = context.up;
   parallelFor(static_cast<int>(segments.size()), params_.worker_threads, [&](int i) {
-    const auto start = Clock::now();
+    const auto start = SteadyClock::now();
     // In mode hsv a segment without a type is a colour-free one, for the
     // types without a plate colour only.
     const bool uncoloured_only = uncoloured_roi_filter_ && segments[i].type_name.empty();
@@ -307,7 +297,7 @@ void FrontEnd::dropSmallPieces(FrontEndResult& result) const
 
 void FrontEnd::mergeFacePieces(const RgbdFrame& frame, const FrameContext& context, FrontEndResult& result) const
 {
-  const double min_cos = std::cos(params_.merge_max_angle_deg * kPi / 180.0);
+  const double min_cos = std::cos(params_.merge_max_angle_deg * kDegToRad);
   auto samePlane = [&](const BrickCandidate& a, const BrickCandidate& b) {
     return a.type_name == b.type_name && !a.complete && !b.complete && a.normal.dot(b.normal) >= min_cos &&
            std::abs(a.plane.signedDistance(b.centroid_m)) <= params_.merge_max_offset_m &&
@@ -357,7 +347,7 @@ void FrontEnd::mergeFacePieces(const RgbdFrame& frame, const FrameContext& conte
 FrontEndResult FrontEnd::process(const RgbdFrame& frame) const
 {
   FrontEndResult result;
-  const auto frame_start = Clock::now();
+  const auto frame_start = SteadyClock::now();
   const std::vector<Segment> segments = segment(frame);
   result.timings.segmentation_ms = millisecondsSince(frame_start);
   filterSegments(frame, segments, result);

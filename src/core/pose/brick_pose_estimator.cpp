@@ -5,6 +5,7 @@
 #include <cmath>
 #include <unordered_set>
 
+#include "brick_pose/common/elapsed.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/correction/measured_face.h"
 #include "brick_pose/registration/brick_symmetry.h"
@@ -16,11 +17,6 @@ namespace
 {
 /// Below this, too little of the face is seen to fix its pose.
 constexpr double kMinOverlap = 0.25;
-
-double millisecondsSince(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 /// Area of the face the segment covers: its points projected into the plane
 /// and counted on a 1 cm grid. Independent of how the segment was sampled.

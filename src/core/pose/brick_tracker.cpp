@@ -4,22 +4,22 @@
 #include <cmath>
 #include <tuple>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
 
 namespace brick_pose
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 double angleBetweenDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b)
 {
-  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180.0 / kPi;
+  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * kRadToDeg;
 }
 
 double rotationAngleDeg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b)
 {
-  return Eigen::AngleAxisd(a.transpose() * b).angle() * 180.0 / kPi;
+  return Eigen::AngleAxisd(a.transpose() * b).angle() * kRadToDeg;
 }
 
 /// The brick turned by a half-turn about its z axis is the same brick (its

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/registration/brick_symmetry.h"
 
@@ -10,7 +11,6 @@ namespace brick_pose
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
 void TrackedPoseParams::validate() const
@@ -27,7 +27,7 @@ PreviousPoses::PreviousPoses(const TrackedPoseParams& params) : params_(params) 
 std::optional<PreviousPose> PreviousPoses::match(const BrickCandidate& candidate) const
 {
   if (!params_.enabled) return std::nullopt;
-  const double min_cos = std::cos(params_.match_angle_deg * kPi / 180.0);
+  const double min_cos = std::cos(params_.match_angle_deg * kDegToRad);
   const PreviousPose* best = nullptr;
   double best_distance_m = 0.0;
   for (const PreviousPose& previous : poses_)
@@ -64,7 +64,7 @@ BrickRegistration registrationFromPrevious(const PreviousPose& previous)
 
 bool correctionSaysMoved(const PoseCorrection& correction, const TrackedPoseParams& params)
 {
-  const double rotation_deg = Eigen::AngleAxisd(correction.delta_in_brick.linear()).angle() * 180.0 / kPi;
+  const double rotation_deg = Eigen::AngleAxisd(correction.delta_in_brick.linear()).angle() * kRadToDeg;
   return correction.offset_m.norm() > params.moved_translation_m || rotation_deg > params.moved_rotation_deg;
 }
 }  // namespace brick_pose

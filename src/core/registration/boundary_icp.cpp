@@ -8,6 +8,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "brick_pose/common/elapsed.h"
 #include "brick_pose/registration/point_grid.h"
 #include "brick_pose/registration/rigid_fit.h"
 
@@ -296,16 +297,12 @@ Eigen::Isometry3d refineBoundaryIcp(const std::vector<Eigen::Vector3d>& source,
   Eigen::Isometry3d current = start;
   std::vector<Eigen::Vector3d> moved_source(source.size());
   std::vector<Eigen::Vector3d> moved_normals(source.size());
-  const auto started = std::chrono::steady_clock::now();
-  for (int iteration = 0; iteration < options.max_iterations; ++iteration)
+  const auto started = SteadyClock::now();
+  for (int iteration = 0; iteration < options.max_iterations && secondsSince(started) < options.max_time_s;
+       ++iteration)
   {
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >= options.max_time_s)
-      break;
-    // Coarse cells make narrow queries scan many points: rebuild as it shrinks.
-    if (plane_radius_m < 0.7 * target_grid.maxRadius())
-      target_grid = PointGrid(target, plane_radius_m);
-    if (boundary_radius_m < 0.7 * boundary_grid.maxRadius())
-      boundary_grid = PointGrid(source_boundary.points, boundary_radius_m);
+    target_grid.shrinkTo(plane_radius_m);
+    boundary_grid.shrinkTo(boundary_radius_m);
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     for (std::size_t i = 0; i < source.size(); ++i)
     {

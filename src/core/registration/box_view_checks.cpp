@@ -108,23 +108,21 @@ double inPlaneTurnDeg(const std::vector<Eigen::Vector3d>& points, int axis, doub
 
 void BoxViewCheckParams::validate() const
 {
-  auto require = [](bool ok, const std::string& field) {
-    if (!ok)
-      throw ConfigError("BoxViewCheckParams." + field + " is out of range");
-  };
-  require(viewpoint_m.allFinite(), "viewpoint_m");
-  require(min_facing_cos >= 0.0 && min_facing_cos <= 1.0, "min_facing_cos");
-  require(face_normal_deg > 0.0 && face_normal_deg < 90.0, "face_normal_deg");
-  require(max_face_distance_m > 0.0 && std::isfinite(max_face_distance_m), "max_face_distance_m");
-  require(min_face_points >= 3, "min_face_points");
-  require(min_turn_face_points >= 3, "min_turn_face_points");
-  require(max_span_shortfall_m >= 0.0 && std::isfinite(max_span_shortfall_m), "max_span_shortfall_m");
-  require(max_span_shortfall_fraction >= 0.0 && max_span_shortfall_fraction <= 1.0, "max_span_shortfall_fraction");
-  require(span_trim_points >= 0, "span_trim_points");
-  require(max_face_tilt_deg > 0.0 && max_face_tilt_deg < 90.0, "max_face_tilt_deg");
-  require(turn_step_deg > 0.0 && turn_step_deg <= 10.0, "turn_step_deg");
-  require(turn_search_deg >= turn_step_deg && turn_search_deg <= 45.0, "turn_search_deg");
-  require(max_face_turn_deg > 0.0 && max_face_turn_deg < turn_search_deg, "max_face_turn_deg");
+  const ParamCheck check("BoxViewCheckParams");
+  check.require(viewpoint_m.allFinite(), "viewpoint_m");
+  check.require(min_facing_cos >= 0.0 && min_facing_cos <= 1.0, "min_facing_cos");
+  check.require(face_normal_deg > 0.0 && face_normal_deg < 90.0, "face_normal_deg");
+  check.require(max_face_distance_m > 0.0 && std::isfinite(max_face_distance_m), "max_face_distance_m");
+  check.require(min_face_points >= 3, "min_face_points");
+  check.require(min_turn_face_points >= 3, "min_turn_face_points");
+  check.require(max_span_shortfall_m >= 0.0 && std::isfinite(max_span_shortfall_m), "max_span_shortfall_m");
+  check.require(max_span_shortfall_fraction >= 0.0 && max_span_shortfall_fraction <= 1.0,
+                "max_span_shortfall_fraction");
+  check.require(span_trim_points >= 0, "span_trim_points");
+  check.require(max_face_tilt_deg > 0.0 && max_face_tilt_deg < 90.0, "max_face_tilt_deg");
+  check.require(turn_step_deg > 0.0 && turn_step_deg <= 10.0, "turn_step_deg");
+  check.require(turn_search_deg >= turn_step_deg && turn_search_deg <= 45.0, "turn_search_deg");
+  check.require(max_face_turn_deg > 0.0 && max_face_turn_deg < turn_search_deg, "max_face_turn_deg");
 }
 
 BoxViewCheck checkBoxView(const Eigen::Isometry3d& pose, const ModelBox& box, const PointSet& scan,

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "brick_pose/common/angles.h"
+
 namespace brick_pose
 {
 namespace registration
@@ -15,7 +17,7 @@ Eigen::Matrix3d halfTurn(const Eigen::Vector3d& axis) { return Eigen::AngleAxisd
 double rotationAngleDeg(const Eigen::Matrix3d& difference)
 {
   const double cos_angle = std::clamp(0.5 * (difference.trace() - 1.0), -1.0, 1.0);
-  return std::acos(cos_angle) * 180.0 / M_PI;
+  return std::acos(cos_angle) * kRadToDeg;
 }
 }  // namespace
 
@@ -111,7 +113,7 @@ PoseError poseErrorModuloSymmetry(const Eigen::Isometry3d& estimate, const Eigen
   {
     const Eigen::Matrix3d difference = estimate.linear().transpose() * truth.linear() * s;
     const double cos_angle = std::clamp(0.5 * (difference.trace() - 1.0), -1.0, 1.0);
-    error.rotation_deg = std::min(error.rotation_deg, std::acos(cos_angle) * 180.0 / M_PI);
+    error.rotation_deg = std::min(error.rotation_deg, std::acos(cos_angle) * kRadToDeg);
   }
   error.translation_m = (estimate.translation() - truth.translation()).norm();
   return error;

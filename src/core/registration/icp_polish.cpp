@@ -23,16 +23,7 @@ constexpr int kBoundaryNeighbours = 20;
 // Target points farther off the source surface than this many robust
 // standard deviations of the depth noise take no part in the target boundary.
 constexpr double kOnSurfaceSigmas = 3.0;
-// The refined pose is kept unless its coverage of the target, scored at this
-// many LCP radii, drops by more than this below the 4-point pose's.
-constexpr double kGuardRadiusPerLcpRadius = 2.0;
-constexpr double kMaxCoverageDropByRefinement = 0.03;
 }  // namespace
-
-double secondsSince(SteadyClock::time_point start)
-{
-  return std::chrono::duration<double>(SteadyClock::now() - start).count();
-}
 
 /// Whether the refined pose still covers the target about as well as the
 /// 4-point pose did; if not, the refinement was pulled off by clutter. The
@@ -45,6 +36,10 @@ bool refinementKeepsCoverage(const std::vector<Eigen::Vector3d>& lcp_sample, con
                              double lcp_radius_m, const Eigen::Isometry3d& four_point_pose,
                              const Eigen::Isometry3d& refined_pose)
 {
+  // Kept unless its coverage, scored at this many LCP radii, drops by more
+  // than this below the 4-point pose's.
+  constexpr double kGuardRadiusPerLcpRadius = 2.0;
+  constexpr double kMaxCoverageDropByRefinement = 0.03;
   const LcpScorer coverage(lcp_sample, target, kGuardRadiusPerLcpRadius * lcp_radius_m);
   return coverage.score(refined_pose) >= coverage.score(four_point_pose) - kMaxCoverageDropByRefinement;
 }

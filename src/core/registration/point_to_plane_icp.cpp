@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/registration/rigid_fit.h"
 
 namespace brick_pose
@@ -20,7 +21,7 @@ Eigen::Isometry3d refinePointToPlane(const PointSet& model, const PointGrid& mod
                                      const std::vector<int>& target_indices, const Eigen::Isometry3d& model_to_target,
                                      const PointToPlaneParams& params)
 {
-  const double min_cos = std::cos(params.max_normal_difference_deg * M_PI / 180.0);
+  const double min_cos = std::cos(params.max_normal_difference_deg * kDegToRad);
   const double radius_m = std::min(params.radius_m, model_grid.maxRadius());
   Eigen::Isometry3d pose = model_to_target;
   for (int iteration = 0; iteration < params.iterations; ++iteration)

@@ -38,18 +38,6 @@ constexpr double kLcpRadiusPerSpacing = 1.3;
 // Candidates verified between two looks at the clock.
 constexpr int kClockStride = 32;
 
-using Clock = SteadyClock;
-
-void requireInRange(double value, double min, double max, const char* name)
-{
-  if (!(value >= min && value <= max))
-  {
-    std::ostringstream message;
-    message << "Super4PCSParams." << name << " must be in [" << min << ", " << max << "], got " << value;
-    throw ConfigError(message.str());
-  }
-}
-
 // Scores and fractions in reasons read to three digits.
 std::string formatScore(double value) { return numberText(value, 3); }
 
@@ -114,7 +102,7 @@ CongruenceTolerances tolerancesFor(const CoplanarBase& base, const SearchScales&
 /// enough, the bases run out or the time budget is spent. Counts bases and
 /// verified candidates into `result`.
 SearchOutcome searchCongruentSets(const SearchInput& input, const LcpScorer& scorer, const Super4PCSParams& params,
-                                  Clock::time_point start, std::mt19937_64& rng, RegistrationResult& result)
+                                  SteadyClock::time_point start, std::mt19937_64& rng, RegistrationResult& result)
 {
   const ShellPairIndex pair_index(input.target_sample.points, input.scales.pair_tolerance_m);
   const CongruentSetFinder finder(input.target_sample, pair_index);
@@ -189,67 +177,51 @@ SearchOutcome searchCongruentSets(const SearchInput& input, const LcpScorer& sco
 
 void Super4PCSParams::validate() const
 {
-  if (!(overlap > 0.0 && overlap <= 1.0))
-    throw ConfigError("Super4PCSParams.overlap must be in (0, 1], got " + std::to_string(overlap));
+  const ParamCheck check("Super4PCSParams");
+  check.require(overlap > 0.0 && overlap <= 1.0, "overlap", "must be in (0, 1]", overlap);
   // Below a micrometre no sensor is that accurate and grid indices would
   // lose their meaning.
-  if (!(delta_m >= 1e-6 && delta_m <= 1e3))
-    throw ConfigError("Super4PCSParams.delta_m must be in [1e-6, 1e3] m, got " + std::to_string(delta_m));
-  if (sample_size < 4)
-    throw ConfigError("Super4PCSParams.sample_size must be at least 4, got " + std::to_string(sample_size));
-  if (lcp_sample_size < 1)
-    throw ConfigError("Super4PCSParams.lcp_sample_size must be at least 1, got " + std::to_string(lcp_sample_size));
-  requireInRange(max_normal_difference_deg, 0.0, 180.0, "max_normal_difference_deg");
-  requireInRange(max_angle_difference_deg, 0.0, 180.0, "max_angle_difference_deg");
-  if (!(max_time_s > 0.0) || std::isnan(max_time_s))
-    throw ConfigError("Super4PCSParams.max_time_s must be positive, got " + std::to_string(max_time_s));
-  if (max_bases < 1)
-    throw ConfigError("Super4PCSParams.max_bases must be at least 1, got " + std::to_string(max_bases));
-  requireInRange(good_enough_ratio, 0.0, 1.0, "good_enough_ratio");
-  requireInRange(min_success_ratio, 0.0, 1.0, "min_success_ratio");
-  if (!(max_fit_rms_factor > 0.0))
-    throw ConfigError("Super4PCSParams.max_fit_rms_factor must be positive, got " +
-                      std::to_string(max_fit_rms_factor));
-  if (refine_sample_size < 3)
-    throw ConfigError("Super4PCSParams.refine_sample_size must be at least 3, got " +
-                      std::to_string(refine_sample_size));
-  if (fine_refine_iterations < 0)
-    throw ConfigError("Super4PCSParams.fine_refine_iterations must be >= 0, got " +
-                      std::to_string(fine_refine_iterations));
-  if (fine_refine_sample_size < 3 || fine_refine_source_sample_size < 3)
-    throw ConfigError("Super4PCSParams.fine_refine_sample_size and fine_refine_source_sample_size must be at least 3");
-  if (refine_source_sample_size < 3)
-    throw ConfigError("Super4PCSParams.refine_source_sample_size must be at least 3, got " +
-                      std::to_string(refine_source_sample_size));
-  if (refine_iterations < 0)
-    throw ConfigError("Super4PCSParams.refine_iterations must be >= 0, got " + std::to_string(refine_iterations));
+  check.inRange(delta_m, 1e-6, 1e3, "delta_m");
+  check.require(sample_size >= 4, "sample_size", "must be at least 4", sample_size);
+  check.require(lcp_sample_size >= 1, "lcp_sample_size", "must be at least 1", lcp_sample_size);
+  check.inRange(max_normal_difference_deg, 0.0, 180.0, "max_normal_difference_deg");
+  check.inRange(max_angle_difference_deg, 0.0, 180.0, "max_angle_difference_deg");
+  check.require(max_time_s > 0.0, "max_time_s", "must be positive", max_time_s);
+  check.require(max_bases >= 1, "max_bases", "must be at least 1", max_bases);
+  check.inRange(good_enough_ratio, 0.0, 1.0, "good_enough_ratio");
+  check.inRange(min_success_ratio, 0.0, 1.0, "min_success_ratio");
+  check.require(max_fit_rms_factor > 0.0, "max_fit_rms_factor", "must be positive", max_fit_rms_factor);
+  check.require(refine_sample_size >= 3, "refine_sample_size", "must be at least 3", refine_sample_size);
+  check.require(refine_source_sample_size >= 3, "refine_source_sample_size", "must be at least 3",
+                refine_source_sample_size);
+  check.require(refine_iterations >= 0, "refine_iterations", "must be >= 0", refine_iterations);
+  check.require(fine_refine_iterations >= 0, "fine_refine_iterations", "must be >= 0", fine_refine_iterations);
+  check.require(fine_refine_sample_size >= 3, "fine_refine_sample_size", "must be at least 3",
+                fine_refine_sample_size);
+  check.require(fine_refine_source_sample_size >= 3, "fine_refine_source_sample_size", "must be at least 3",
+                fine_refine_source_sample_size);
   view.validate();
 }
 
 void ViewRegistrationParams::validate() const
 {
-  if (!viewpoint_m.allFinite())
-    throw ConfigError("Super4PCSParams.view.viewpoint_m must be finite");
-  if (scan_sample_size < 8 || model_sample_size < 8)
-    throw ConfigError("Super4PCSParams.view.scan_sample_size and model_sample_size must be at least 8");
-  if (max_candidates < 1 || kept_hypotheses < 1)
-    throw ConfigError("Super4PCSParams.view.max_candidates and kept_hypotheses must be at least 1");
-  auto require = [](double value, double min, double max, const char* name) {
-    if (!(value >= min && value <= max))
-      throw ConfigError(std::string("Super4PCSParams.view.") + name + " must be in [" + std::to_string(min) + ", " +
-                        std::to_string(max) + "], got " + std::to_string(value));
-  };
-  require(max_normal_difference_deg, 1.0, 90.0, "max_normal_difference_deg");
-  require(min_visible_cos, 0.0, 1.0, "min_visible_cos");
-  require(free_space_margin_m, 0.0, 1e3, "free_space_margin_m");
-  require(max_relative_surface_variation, 1.0, 1e3, "max_relative_surface_variation");
-  require(min_sight_cos, 0.0, 1.0, "min_sight_cos");
-  require(normal_radius_per_range, 0.0, 1.0, "normal_radius_per_range");
-  require(min_target_coverage, 0.0, 1.0, "min_target_coverage");
-  require(min_model_coverage, 0.0, 1.0, "min_model_coverage");
-  require(max_free_space_violation, 0.0, 1.0, "max_free_space_violation");
-  require(min_confidence, 0.0, 1.0, "min_confidence");
-  require(stop_target_coverage, 0.0, 1.0, "stop_target_coverage");
+  const ParamCheck check("Super4PCSParams.view");
+  check.require(viewpoint_m.allFinite(), "viewpoint_m", "must be finite");
+  check.require(scan_sample_size >= 8, "scan_sample_size", "must be at least 8", scan_sample_size);
+  check.require(model_sample_size >= 8, "model_sample_size", "must be at least 8", model_sample_size);
+  check.require(max_candidates >= 1, "max_candidates", "must be at least 1", max_candidates);
+  check.require(kept_hypotheses >= 1, "kept_hypotheses", "must be at least 1", kept_hypotheses);
+  check.inRange(max_normal_difference_deg, 1.0, 90.0, "max_normal_difference_deg");
+  check.inRange(min_visible_cos, 0.0, 1.0, "min_visible_cos");
+  check.inRange(free_space_margin_m, 0.0, 1e3, "free_space_margin_m");
+  check.inRange(max_relative_surface_variation, 1.0, 1e3, "max_relative_surface_variation");
+  check.inRange(min_sight_cos, 0.0, 1.0, "min_sight_cos");
+  check.inRange(normal_radius_per_range, 0.0, 1.0, "normal_radius_per_range");
+  check.inRange(min_target_coverage, 0.0, 1.0, "min_target_coverage");
+  check.inRange(min_model_coverage, 0.0, 1.0, "min_model_coverage");
+  check.inRange(max_free_space_violation, 0.0, 1.0, "max_free_space_violation");
+  check.inRange(min_confidence, 0.0, 1.0, "min_confidence");
+  check.inRange(stop_target_coverage, 0.0, 1.0, "stop_target_coverage");
 }
 
 Super4PCS::Super4PCS(const Super4PCSParams& params) : params_(params)
@@ -259,7 +231,7 @@ Super4PCS::Super4PCS(const Super4PCSParams& params) : params_(params)
 
 RegistrationResult Super4PCS::align(const PointSet& source, const PointSet& target) const
 {
-  const Clock::time_point start = Clock::now();
+  const SteadyClock::time_point start = SteadyClock::now();
   validateRegistrationInput(source, "source");
   validateRegistrationInput(target, "target");
   if (params_.view.mode == ViewMode::kOn || (params_.view.mode == ViewMode::kAuto && isMultiFaceModel(source)))

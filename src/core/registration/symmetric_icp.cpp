@@ -7,6 +7,7 @@
 #include <utility>
 
 
+#include "brick_pose/common/elapsed.h"
 #include "brick_pose/registration/point_grid.h"
 #include "brick_pose/registration/rigid_fit.h"
 
@@ -217,17 +218,12 @@ Eigen::Isometry3d refineSymmetricIcp(const std::vector<Eigen::Vector3d>& source,
   std::vector<Eigen::Vector3d> moved_source(source.size());
   std::vector<Eigen::Vector3d> moved_normals(hybrid ? source.size() : 0);
 
-  const auto started = std::chrono::steady_clock::now();
-  for (int iteration = 0; iteration < options.max_iterations; ++iteration)
+  const auto started = SteadyClock::now();
+  for (int iteration = 0; iteration < options.max_iterations && secondsSince(started) < options.max_time_s;
+       ++iteration)
   {
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >= options.max_time_s)
-      break;
-    // Coarse cells make narrow queries scan many points: rebuild as it shrinks.
-    if (radius_m < 0.7 * target_grid.maxRadius())
-    {
-      target_grid = PointGrid(target, radius_m);
-      source_grid = PointGrid(source, radius_m);
-    }
+    target_grid.shrinkTo(radius_m);
+    source_grid.shrinkTo(radius_m);
     for (std::size_t i = 0; i < source.size(); ++i)
     {
       moved_source[i] = current * source[i];

@@ -362,23 +362,21 @@ std::string toString(EdgeKind kind)
 
 void EdgeEvidenceParams::validate() const
 {
-  auto require = [](bool condition, const char* field, const char* rule) {
-    if (!condition) throw ConfigError(std::string("edge evidence: ") + field + " " + rule);
-  };
-  require(probe_px >= 4, "probe_px", "must be >= 4");
-  require(inner_gap_px >= 0 && inner_gap_px + 2 <= probe_px, "inner_gap_px", "must be in [0, probe_px - 2]");
-  require(stretches >= 1, "stretches", "must be >= 1");
-  require(sample_spacing_px > 0.0, "sample_spacing_px", "must be > 0");
-  require(end_margin_fraction >= 0.0 && end_margin_fraction < 0.5, "end_margin_fraction", "must be in [0, 0.5)");
-  require(min_step_m > 0.0, "min_step_m", "must be > 0");
-  require(step_noise_factor >= 0.0, "step_noise_factor", "must be >= 0");
-  require(max_border_fraction > 0.0 && max_border_fraction <= 1.0, "max_border_fraction", "must be in (0, 1]");
-  require(min_depth_fraction >= 0.0 && min_depth_fraction <= 1.0, "min_depth_fraction", "must be in [0, 1]");
-  require(min_groove_m > 0.0, "min_groove_m", "must be > 0");
-  require(min_line_contrast > 0.0, "min_line_contrast", "must be > 0");
-  require(seam_noise_factor >= 0.0, "seam_noise_factor", "must be >= 0");
-  require(max_overrun_m > min_step_m, "max_overrun_m", "must be > min_step_m");
-  require(seam_search_px >= 0 && seam_search_px + kSeamArm <= probe_px, "seam_search_px",
+  const ParamCheck check("edge evidence");
+  check.require(probe_px >= 4, "probe_px", "must be >= 4");
+  check.require(inner_gap_px >= 0 && inner_gap_px + 2 <= probe_px, "inner_gap_px", "must be in [0, probe_px - 2]");
+  check.require(stretches >= 1, "stretches", "must be >= 1");
+  check.require(sample_spacing_px > 0.0, "sample_spacing_px", "must be > 0");
+  check.require(end_margin_fraction >= 0.0 && end_margin_fraction < 0.5, "end_margin_fraction", "must be in [0, 0.5)");
+  check.require(min_step_m > 0.0, "min_step_m", "must be > 0");
+  check.require(step_noise_factor >= 0.0, "step_noise_factor", "must be >= 0");
+  check.require(max_border_fraction > 0.0 && max_border_fraction <= 1.0, "max_border_fraction", "must be in (0, 1]");
+  check.require(min_depth_fraction >= 0.0 && min_depth_fraction <= 1.0, "min_depth_fraction", "must be in [0, 1]");
+  check.require(min_groove_m > 0.0, "min_groove_m", "must be > 0");
+  check.require(min_line_contrast > 0.0, "min_line_contrast", "must be > 0");
+  check.require(seam_noise_factor >= 0.0, "seam_noise_factor", "must be >= 0");
+  check.require(max_overrun_m > min_step_m, "max_overrun_m", "must be > min_step_m");
+  check.require(seam_search_px >= 0 && seam_search_px + kSeamArm <= probe_px, "seam_search_px",
           "must be in [0, probe_px - 3]");
 }
 

@@ -597,39 +597,23 @@ Segment tileSegment(const RgbdFrame& frame, const Segment& segment, const std::a
   }
   cv::Mat inside = cv::Mat::zeros(box.size(), CV_8UC1);
   cv::fillConvexPoly(inside, polygon, cv::Scalar(255), cv::LINE_8, 4);
-  Segment part;
-  part.type_name = segment.type_name;
-  part.bounding_box_px = box;
-  cv::bitwise_and(segment.mask, inside, part.mask);
-  const int width = frame.width_px();
-  for (int y = 0; y < box.height; ++y)
-  {
-    const std::uint8_t* row = part.mask.ptr<std::uint8_t>(y);
-    const float* depth_row = frame.depth_m.ptr<float>(y + box.y);
-    for (int x = 0; x < box.width; ++x)
-    {
-      if (!row[x]) continue;
-      ++part.area_px;
-      if (!std::isnan(depth_row[x + box.x])) part.pixel_indices.push_back((y + box.y) * width + x + box.x);
-    }
-  }
-  return part;
+  cv::Mat part_mask;
+  cv::bitwise_and(segment.mask, inside, part_mask);
+  return segmentFromMask(part_mask, box, frame.depth_m, segment.type_name);
 }
 }  // namespace
 
 void FaceTilingParams::validate() const
 {
-  auto require = [](bool condition, const char* field, const char* rule) {
-    if (!condition) throw ConfigError(std::string("face tiling: ") + field + " " + rule);
-  };
-  require(cell_m > 0.0, "cell_m", "must be > 0");
-  require(max_cells >= 100, "max_cells", "must be >= 100");
-  require(seam_arm_px >= 1, "seam_arm_px", "must be >= 1");
-  require(min_seam_strength > 0.0, "min_seam_strength", "must be > 0");
-  require(min_coverage > 0.0 && min_coverage <= 1.0, "min_coverage", "must be in (0, 1]");
-  require(max_foreign_fraction >= 0.0 && max_foreign_fraction < 1.0, "max_foreign_fraction", "must be in [0, 1)");
-  require(min_visible_fraction > 0.0 && min_visible_fraction <= 1.0, "min_visible_fraction", "must be in (0, 1]");
-  require(max_tiles >= 1, "max_tiles", "must be >= 1");
+  const ParamCheck check("face tiling");
+  check.require(cell_m > 0.0, "cell_m", "must be > 0");
+  check.require(max_cells >= 100, "max_cells", "must be >= 100");
+  check.require(seam_arm_px >= 1, "seam_arm_px", "must be >= 1");
+  check.require(min_seam_strength > 0.0, "min_seam_strength", "must be > 0");
+  check.require(min_coverage > 0.0 && min_coverage <= 1.0, "min_coverage", "must be in (0, 1]");
+  check.require(max_foreign_fraction >= 0.0 && max_foreign_fraction < 1.0, "max_foreign_fraction", "must be in [0, 1)");
+  check.require(min_visible_fraction > 0.0 && min_visible_fraction <= 1.0, "min_visible_fraction", "must be in (0, 1]");
+  check.require(max_tiles >= 1, "max_tiles", "must be >= 1");
 }
 
 FaceTiling tileFace(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,

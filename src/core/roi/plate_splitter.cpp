@@ -164,32 +164,23 @@ std::vector<Segment> splitSideBySide(const RgbdFrame& frame, const Segment& segm
 
   const std::vector<double> cuts = cutFractions(segment, measured, frame.camera, coordinate, parts);
   const cv::Rect& box = segment.bounding_box_px;
-  std::vector<Segment> split(static_cast<std::size_t>(parts));
-  for (Segment& part : split)
-  {
-    part.type_name = segment.type_name;
-    part.bounding_box_px = box;
-    part.mask = cv::Mat::zeros(box.size(), CV_8UC1);
-  }
-  const int width = frame.width_px();
+  std::vector<cv::Mat> part_masks(static_cast<std::size_t>(parts));
+  for (cv::Mat& mask : part_masks) mask = cv::Mat::zeros(box.size(), CV_8UC1);
   for (int y = 0; y < box.height; ++y)
   {
     const std::uint8_t* mask_row = segment.mask.ptr<std::uint8_t>(y);
-    const float* depth_row = frame.depth_m.ptr<float>(y + box.y);
     for (int x = 0; x < box.width; ++x)
     {
       if (!mask_row[x]) continue;
-      const int u = x + box.x, v = y + box.y;
       Eigen::Vector3d point;
-      if (!measured.plane.intersectRay(frame.camera.ray(u, v), point)) continue;
+      if (!measured.plane.intersectRay(frame.camera.ray(x + box.x, y + box.y), point)) continue;
       const double fraction = coordinate(point);
       const auto index = static_cast<std::size_t>(std::upper_bound(cuts.begin(), cuts.end(), fraction) - cuts.begin());
-      Segment& part = split[index];
-      part.mask.at<std::uint8_t>(y, x) = 255;
-      ++part.area_px;
-      if (!std::isnan(depth_row[u])) part.pixel_indices.push_back(v * width + u);
+      part_masks[index].at<std::uint8_t>(y, x) = 255;
     }
   }
+  std::vector<Segment> split;
+  for (const cv::Mat& mask : part_masks) split.push_back(segmentFromMask(mask, box, frame.depth_m, segment.type_name));
   return split;
 }
 std::vector<Segment> splitAtDepthSteps(const RgbdFrame& frame, const Segment& segment, double max_step_m,

@@ -7,6 +7,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/frame/organized_cloud.h"
 #include "brick_pose/roi/plate_splitter.h"
@@ -16,7 +17,6 @@ namespace brick_pose
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 /// A colour-free face that smaller catalogue tops cover this well (all but
 /// this share) may be those bricks touching.
 constexpr double kMaxUntiledForAlternative = 0.1;
@@ -146,7 +146,7 @@ EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate,
 double tiltDegrees(const Eigen::Vector3d& normal, const Eigen::Vector3d& up)
 {
   const double cos_tilt = normal.dot(up.normalized());
-  return std::acos(std::max(-1.0, std::min(1.0, cos_tilt))) * 180.0 / kPi;
+  return std::acos(std::max(-1.0, std::min(1.0, cos_tilt))) * kRadToDeg;
 }
 
 /// The direction sides hang from a face: the frame's up for a level face
@@ -227,26 +227,24 @@ Eigen::Vector3d faceCentre(const std::array<Eigen::Vector3d, 4>& corners_m)
 
 void RoiFilterParams::validate() const
 {
-  auto require = [](bool condition, const char* field, const char* rule) {
-    if (!condition) throw ConfigError(std::string("roi filter: ") + field + " " + rule);
-  };
-  require(min_points >= 3, "min_points", "must be >= 3");
-  require(max_points >= 0, "max_points", "must be >= 0 (0 keeps every pixel)");
-  require(max_plane_rms_m > 0.0, "max_plane_rms_m", "must be > 0");
-  require(max_depth_step_m > 0.0, "max_depth_step_m", "must be > 0");
-  require(min_part_area_px >= 1, "min_part_area_px", "must be >= 1");
-  require(dimensions.tolerance_m >= 0.0, "dimensions.tolerance_m", "must be >= 0");
-  require(dimensions.max_thickness_m >= 0.0, "dimensions.max_thickness_m", "must be >= 0");
-  require(dimensions.min_visible_fraction > 0.0 && dimensions.min_visible_fraction <= 1.0,
+  const ParamCheck check("roi filter");
+  check.require(min_points >= 3, "min_points", "must be >= 3");
+  check.require(max_points >= 0, "max_points", "must be >= 0 (0 keeps every pixel)");
+  check.require(max_plane_rms_m > 0.0, "max_plane_rms_m", "must be > 0");
+  check.require(max_depth_step_m > 0.0, "max_depth_step_m", "must be > 0");
+  check.require(min_part_area_px >= 1, "min_part_area_px", "must be >= 1");
+  check.require(dimensions.tolerance_m >= 0.0, "dimensions.tolerance_m", "must be >= 0");
+  check.require(dimensions.max_thickness_m >= 0.0, "dimensions.max_thickness_m", "must be >= 0");
+  check.require(dimensions.min_visible_fraction > 0.0 && dimensions.min_visible_fraction <= 1.0,
           "dimensions.min_visible_fraction", "must be in (0, 1]");
-  require(classification_tolerance_m >= 0.0, "classification_tolerance_m", "must be >= 0");
-  require(min_fill_ratio >= 0.0 && min_fill_ratio <= 1.0, "min_fill_ratio", "must be in [0, 1]");
-  require(std::isfinite(up_direction.norm()), "up_direction", "must be finite");
-  require(max_tilt_deg > 0.0 && max_tilt_deg <= 90.0, "max_tilt_deg", "must be in (0, 90]");
-  require(quad.side_band_px > 0.0, "quad.side_band_px", "must be > 0");
-  require(quad.side_search_px >= 0.0, "quad.side_search_px", "must be >= 0");
-  require(quad.edge_quantile >= 0.0 && quad.edge_quantile <= 1.0, "quad.edge_quantile", "must be in [0, 1]");
-  require(quad.min_side_points >= 2, "quad.min_side_points", "must be >= 2");
+  check.require(classification_tolerance_m >= 0.0, "classification_tolerance_m", "must be >= 0");
+  check.require(min_fill_ratio >= 0.0 && min_fill_ratio <= 1.0, "min_fill_ratio", "must be in [0, 1]");
+  check.require(std::isfinite(up_direction.norm()), "up_direction", "must be finite");
+  check.require(max_tilt_deg > 0.0 && max_tilt_deg <= 90.0, "max_tilt_deg", "must be in (0, 90]");
+  check.require(quad.side_band_px > 0.0, "quad.side_band_px", "must be > 0");
+  check.require(quad.side_search_px >= 0.0, "quad.side_search_px", "must be >= 0");
+  check.require(quad.edge_quantile >= 0.0 && quad.edge_quantile <= 1.0, "quad.edge_quantile", "must be in [0, 1]");
+  check.require(quad.min_side_points >= 2, "quad.min_side_points", "must be >= 2");
   edges.validate();
   tiling.validate();
   sides.validate();

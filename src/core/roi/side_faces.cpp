@@ -110,30 +110,16 @@ Run marchDown(const RgbdFrame& frame, const Eigen::Vector3d& top_m, const Eigen:
 }
 }  // namespace
 
-std::string toString(SideFaceVerdict verdict)
-{
-  switch (verdict)
-  {
-    case SideFaceVerdict::kCutShort: return "side partly hidden";
-    case SideFaceVerdict::kMatches: return "side of the catalogue height";
-    case SideFaceVerdict::kMismatch: return "side of another height";
-    case SideFaceVerdict::kNotVisible:
-    default: return "no side visible";
-  }
-}
-
 void SideFaceParams::validate() const
 {
-  auto require = [](bool condition, const char* field, const char* rule) {
-    if (!condition) throw ConfigError(std::string("side faces: ") + field + " " + rule);
-  };
-  require(plane_tolerance_m > 0.0, "plane_tolerance_m", "must be > 0");
-  require(search_factor > 1.0, "search_factor", "must be > 1");
-  require(min_visible_m > 0.0, "min_visible_m", "must be > 0");
-  require(height_tolerance_m >= 0.0, "height_tolerance_m", "must be >= 0");
-  require(height_tolerance_fraction >= 0.0 && height_tolerance_fraction < 1.0, "height_tolerance_fraction",
+  const ParamCheck check("side faces");
+  check.require(plane_tolerance_m > 0.0, "plane_tolerance_m", "must be > 0");
+  check.require(search_factor > 1.0, "search_factor", "must be > 1");
+  check.require(min_visible_m > 0.0, "min_visible_m", "must be > 0");
+  check.require(height_tolerance_m >= 0.0, "height_tolerance_m", "must be >= 0");
+  check.require(height_tolerance_fraction >= 0.0 && height_tolerance_fraction < 1.0, "height_tolerance_fraction",
           "must be in [0, 1)");
-  require(columns >= 3, "columns", "must be >= 3");
+  check.require(columns >= 3, "columns", "must be >= 3");
 }
 
 SideFaceEvidence measureSideFace(const RgbdFrame& frame, const std::array<Eigen::Vector3d, 4>& corners_m,
@@ -186,5 +172,17 @@ SideFaceVerdict judgeSideFace(const SideFaceEvidence& side, double height_m, con
     if (std::abs(side.visible_height_m - layers * height_m) <= tolerance_m) return SideFaceVerdict::kMatches;
   if (side.foot_on_support || side.visible_height_m > height_m + tolerance_m) return SideFaceVerdict::kMismatch;
   return SideFaceVerdict::kCutShort;
+}
+
+std::string toString(SideFaceVerdict verdict)
+{
+  switch (verdict)
+  {
+    case SideFaceVerdict::kCutShort: return "side partly hidden";
+    case SideFaceVerdict::kMatches: return "side of the catalogue height";
+    case SideFaceVerdict::kMismatch: return "side of another height";
+    case SideFaceVerdict::kNotVisible:
+    default: return "no side visible";
+  }
 }
 }  // namespace brick_pose

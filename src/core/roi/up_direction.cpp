@@ -6,13 +6,13 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
 
 namespace brick_pose
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 /// Small deterministic generator (the estimate must not vary run to run).
 class SplitMix
@@ -44,30 +44,16 @@ bool onPlane(const Sample& sample, const Eigen::Vector3d& normal, double offset)
 }
 }  // namespace
 
-std::string toString(UpSource source)
-{
-  switch (source)
-  {
-    case UpSource::kGiven: return "given (tf)";
-    case UpSource::kSupportPlane: return "the supporting plane";
-    case UpSource::kFaceNormals: return "the faces' dominant normal";
-    case UpSource::kUnknown:
-    default: return "unknown";
-  }
-}
-
 void UpDirectionParams::validate() const
 {
-  auto require = [](bool condition, const char* field, const char* rule) {
-    if (!condition) throw ConfigError(std::string("up direction: ") + field + " " + rule);
-  };
-  require(stride_px >= 1, "stride_px", "must be >= 1");
-  require(iterations >= 1, "iterations", "must be >= 1");
-  require(score_points >= 10, "score_points", "must be >= 10");
-  require(inlier_distance_m > 0.0, "inlier_distance_m", "must be > 0");
-  require(inlier_distance_per_m2 >= 0.0, "inlier_distance_per_m2", "must be >= 0");
-  require(min_support_fraction > 0.0 && min_support_fraction <= 1.0, "min_support_fraction", "must be in (0, 1]");
-  require(cluster_angle_deg > 0.0 && cluster_angle_deg < 90.0, "cluster_angle_deg", "must be in (0, 90)");
+  const ParamCheck check("up direction");
+  check.require(stride_px >= 1, "stride_px", "must be >= 1");
+  check.require(iterations >= 1, "iterations", "must be >= 1");
+  check.require(score_points >= 10, "score_points", "must be >= 10");
+  check.require(inlier_distance_m > 0.0, "inlier_distance_m", "must be > 0");
+  check.require(inlier_distance_per_m2 >= 0.0, "inlier_distance_per_m2", "must be >= 0");
+  check.require(min_support_fraction > 0.0 && min_support_fraction <= 1.0, "min_support_fraction", "must be in (0, 1]");
+  check.require(cluster_angle_deg > 0.0 && cluster_angle_deg < 90.0, "cluster_angle_deg", "must be in (0, 90)");
 }
 
 UpDirection estimateSupportPlaneUp(const RgbdFrame& frame, const UpDirectionParams& params)
@@ -142,7 +128,7 @@ UpDirection dominantFaceNormal(const std::vector<Eigen::Vector3d>& normals, cons
                                const UpDirectionParams& params)
 {
   UpDirection result;
-  const double min_cos = std::cos(params.cluster_angle_deg * kPi / 180.0);
+  const double min_cos = std::cos(params.cluster_angle_deg * kDegToRad);
   double best_weight = 0.0;
   for (std::size_t i = 0; i < normals.size() && i < weights.size(); ++i)
   {
@@ -162,5 +148,17 @@ UpDirection dominantFaceNormal(const std::vector<Eigen::Vector3d>& normals, cons
     }
   }
   return result;
+}
+
+std::string toString(UpSource source)
+{
+  switch (source)
+  {
+    case UpSource::kGiven: return "given (tf)";
+    case UpSource::kSupportPlane: return "the supporting plane";
+    case UpSource::kFaceNormals: return "the faces' dominant normal";
+    case UpSource::kUnknown:
+    default: return "unknown";
+  }
 }
 }  // namespace brick_pose

@@ -7,18 +7,14 @@
 
 #include <opencv2/core/utility.hpp>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
+#include "brick_pose/common/union_find.h"
 
 namespace brick_pose
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
-
-void require(bool condition, const char* field, const char* rule)
-{
-  if (!condition) throw ConfigError(std::string("colour-free segmenter: ") + field + " " + rule);
-}
 
 /// Standard deviation (rad) of a fitted normal: the noise over the spread of
 /// the points along the plane's narrower axis, shrinking with their number.
@@ -43,17 +39,6 @@ MomentPlane withNormal(const MomentPlane& plane, const PlaneMoments& moments)
   moved.centroid_m = moments.mean();
   moved.mse_m2 = std::max(0.0, plane.normal.dot(moments.covariance() * plane.normal));
   return moved;
-}
-
-/// Union-find over node ids with path halving.
-int findRoot(std::vector<int>& parent, int node)
-{
-  while (parent[node] != node)
-  {
-    parent[node] = parent[parent[node]];
-    node = parent[node];
-  }
-  return node;
 }
 
 enum class NodeState : std::uint8_t
@@ -126,22 +111,23 @@ struct HeapEntry
 
 void CellClusteringParams::validate() const
 {
-  require(min_cell_fill > 0.0 && min_cell_fill <= 1.0, "min_cell_fill", "must be in (0, 1]");
-  require(cell_sigma_factor > 0.0, "cell_sigma_factor", "must be > 0");
-  require(spread_sigma_factor > 0.0, "spread_sigma_factor", "must be > 0");
-  require(offset_sigma_factor > 0.0, "offset_sigma_factor", "must be > 0");
-  require(offset_floor_m >= 0.0, "offset_floor_m", "must be >= 0");
-  require(merge_sigma_factor > 0.0, "merge_sigma_factor", "must be > 0");
-  require(plane_floor_m >= 0.0, "plane_floor_m", "must be >= 0");
-  require(min_angle_deg >= 0.0 && min_angle_deg < 90.0, "min_angle_deg", "must be in [0, 90)");
-  require(angle_sigma_factor >= 0.0, "angle_sigma_factor", "must be >= 0");
-  require(max_angle_deg > 0.0 && max_angle_deg < 90.0 && max_angle_deg >= min_angle_deg, "max_angle_deg",
+  const ParamCheck check("colour-free segmenter");
+  check.require(min_cell_fill > 0.0 && min_cell_fill <= 1.0, "min_cell_fill", "must be in (0, 1]");
+  check.require(cell_sigma_factor > 0.0, "cell_sigma_factor", "must be > 0");
+  check.require(spread_sigma_factor > 0.0, "spread_sigma_factor", "must be > 0");
+  check.require(offset_sigma_factor > 0.0, "offset_sigma_factor", "must be > 0");
+  check.require(offset_floor_m >= 0.0, "offset_floor_m", "must be >= 0");
+  check.require(merge_sigma_factor > 0.0, "merge_sigma_factor", "must be > 0");
+  check.require(plane_floor_m >= 0.0, "plane_floor_m", "must be >= 0");
+  check.require(min_angle_deg >= 0.0 && min_angle_deg < 90.0, "min_angle_deg", "must be in [0, 90)");
+  check.require(angle_sigma_factor >= 0.0, "angle_sigma_factor", "must be >= 0");
+  check.require(max_angle_deg > 0.0 && max_angle_deg < 90.0 && max_angle_deg >= min_angle_deg, "max_angle_deg",
           "must be in (0, 90) and >= min_angle_deg");
-  require(min_plane_cells >= 1, "min_plane_cells", "must be >= 1");
-  require(max_plane_normal_sigma_deg > 0.0, "max_plane_normal_sigma_deg", "must be > 0");
-  require(max_incidence_deg > 0.0 && max_incidence_deg < 90.0, "max_incidence_deg", "must be in (0, 90)");
-  require(step_sigma_factor > 0.0, "step_sigma_factor", "must be > 0");
-  require(min_step_fraction >= 0.0, "min_step_fraction", "must be >= 0");
+  check.require(min_plane_cells >= 1, "min_plane_cells", "must be >= 1");
+  check.require(max_plane_normal_sigma_deg > 0.0, "max_plane_normal_sigma_deg", "must be > 0");
+  check.require(max_incidence_deg > 0.0 && max_incidence_deg < 90.0, "max_incidence_deg", "must be in (0, 90)");
+  check.require(step_sigma_factor > 0.0, "step_sigma_factor", "must be > 0");
+  check.require(min_step_fraction >= 0.0, "min_step_fraction", "must be >= 0");
 }
 
 std::vector<MomentPlane> fitCellPlanes(const CellGrid& grid, double min_cell_fill, bool parallel)
@@ -179,7 +165,7 @@ bool CellClustering::planarCell(const CellGrid& grid, int cell, const MomentPlan
     return false;
   const double distance_m = plane.centroid_m.norm();
   const double plane_offset_m = std::abs(plane.normal.dot(plane.centroid_m));  // distance of the plane from the camera
-  if (plane_offset_m < std::cos(params_.max_incidence_deg * kPi / 180.0) * distance_m) return false;
+  if (plane_offset_m < std::cos(params_.max_incidence_deg * kDegToRad) * distance_m) return false;
   return !depthStep(grid, cell, plane, noise);
 }
 
@@ -232,8 +218,8 @@ bool CellClustering::compatible(const PlaneNode& a, const PlaneNode& b, const De
 
 double CellClustering::maxAngleRad(double normal_sigma_rad) const
 {
-  return std::min(params_.max_angle_deg * kPi / 180.0,
-                  params_.min_angle_deg * kPi / 180.0 + params_.angle_sigma_factor * normal_sigma_rad);
+  return std::min(params_.max_angle_deg * kDegToRad,
+                  params_.min_angle_deg * kDegToRad + params_.angle_sigma_factor * normal_sigma_rad);
 }
 
 CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<MomentPlane>& cell_planes,
@@ -286,7 +272,7 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
   seen.assign(static_cast<std::size_t>(count), 0);
   unsigned stamp = 0;
   std::vector<std::pair<double, int>> candidates;
-  const double max_plane_sigma_rad = params_.max_plane_normal_sigma_deg * kPi / 180.0;
+  const double max_plane_sigma_rad = params_.max_plane_normal_sigma_deg * kDegToRad;
   while (!heap.empty())
   {
     std::pop_heap(heap.begin(), heap.end(), std::greater<HeapEntry>());

@@ -6,6 +6,7 @@
 
 #include <opencv2/core/utility.hpp>
 
+#include "brick_pose/common/elapsed.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/common/statistics.h"
 #include "brick_pose/segmentation/cell_grid.h"
@@ -16,8 +17,6 @@ namespace brick_pose
 {
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
 /// The noise is measured on blocks of this many cells square: several
 /// times the noise's correlation length, so that a block's plane cannot
 /// absorb the correlated part (on the rig's correlated D415 noise, blocks of
@@ -25,17 +24,12 @@ using Clock = std::chrono::steady_clock;
 /// small enough that most blocks lie on one face.
 constexpr int kNoiseBlockCells = 4;
 
-double millisecondsSince(Clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
 /// Wall and calling-thread CPU time of a stage (the CPU time stays
 /// meaningful on a machine shared with other processes).
 class StageClock
 {
 public:
-  StageClock() : wall_(Clock::now()), cpu_s_(threadCpuSeconds()) {}
+  StageClock() : wall_(SteadyClock::now()), cpu_s_(threadCpuSeconds()) {}
   void stop(double& wall_ms, double& cpu_ms) const
   {
     wall_ms = millisecondsSince(wall_);
@@ -43,32 +37,28 @@ public:
   }
 
 private:
-  Clock::time_point wall_;
+  SteadyClock::time_point wall_;
   double cpu_s_;
 };
-
-void require(bool condition, const char* field, const char* rule)
-{
-  if (!condition) throw ConfigError(std::string("colour-free segmenter: ") + field + " " + rule);
-}
 
 }  // namespace
 
 void ColourFreeParams::validate() const
 {
-  require(cell_px == 0 || cell_px >= 2, "cell_px", "must be 0 (automatic) or >= 2");
-  require(cells_across > 0, "cells_across", "must be > 0");
-  require(max_gap_px >= 0, "max_gap_px", "must be >= 0");
-  require(support_min_image_fraction > 0.0 && support_min_image_fraction <= 1.0, "support_min_image_fraction",
+  const ParamCheck check("colour-free segmenter");
+  check.require(cell_px == 0 || cell_px >= 2, "cell_px", "must be 0 (automatic) or >= 2");
+  check.require(cells_across > 0, "cells_across", "must be > 0");
+  check.require(max_gap_px >= 0, "max_gap_px", "must be >= 0");
+  check.require(support_min_image_fraction > 0.0 && support_min_image_fraction <= 1.0, "support_min_image_fraction",
           "must be in (0, 1]");
-  require(support_margin_m >= 0.0, "support_margin_m", "must be >= 0");
-  require(noise_at_1m_m > 0.0, "noise_at_1m_m", "must be > 0");
-  require(min_noise_at_1m_m > 0.0, "min_noise_at_1m_m", "must be > 0");
-  require(max_noise_at_1m_m >= min_noise_at_1m_m, "max_noise_at_1m_m", "must be >= min_noise_at_1m_m");
-  require(noise_quantile > 0.0 && noise_quantile < 1.0, "noise_quantile", "must be in (0, 1)");
-  require(noise_floor_m >= 0.0, "noise_floor_m", "must be >= 0");
-  require(noise_correlation_px >= 1, "noise_correlation_px", "must be >= 1");
-  require(min_area_px >= 1, "min_area_px", "must be >= 1");
+  check.require(support_margin_m >= 0.0, "support_margin_m", "must be >= 0");
+  check.require(noise_at_1m_m > 0.0, "noise_at_1m_m", "must be > 0");
+  check.require(min_noise_at_1m_m > 0.0, "min_noise_at_1m_m", "must be > 0");
+  check.require(max_noise_at_1m_m >= min_noise_at_1m_m, "max_noise_at_1m_m", "must be >= min_noise_at_1m_m");
+  check.require(noise_quantile > 0.0 && noise_quantile < 1.0, "noise_quantile", "must be in (0, 1)");
+  check.require(noise_floor_m >= 0.0, "noise_floor_m", "must be >= 0");
+  check.require(noise_correlation_px >= 1, "noise_correlation_px", "must be >= 1");
+  check.require(min_area_px >= 1, "min_area_px", "must be >= 1");
   clustering.validate();
   refinement.validate();
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "brick_pose/common/union_find.h"
+
 namespace brick_pose
 {
 namespace
@@ -13,16 +15,6 @@ struct Run
   int u_begin, u_end;  // [begin, end) in the row
   int region;
 };
-
-int findRoot(std::vector<int>& parent, int run)
-{
-  while (parent[run] != run)
-  {
-    parent[run] = parent[parent[run]];
-    run = parent[run];
-  }
-  return run;
-}
 
 /// The runs of one row, gaps of unlabelled pixels up to max_gap_px bridged.
 void appendRowRuns(const int* row, int v, int width, const std::vector<int>& region_of_label, int max_gap_px,

@@ -11,6 +11,7 @@
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/region_growing.h>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/frame/organized_cloud.h"
 #include "brick_pose/geometry/plane_fit.h"
@@ -19,12 +20,6 @@ namespace brick_pose
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
-
-void require(bool condition, const char* field, const char* rule)
-{
-  if (!condition) throw ConfigError(std::string("region growing: ") + field + " " + rule);
-}
 
 /// Distance from the plane a pixel of depth z may have and still be on it:
 /// the configured floor or three sigmas of the sensor's axial noise.
@@ -111,17 +106,20 @@ std::optional<Segment> floodFootprint(const RgbdFrame& frame, const pcl::PointCl
 
 void RegionGrowingParams::validate() const
 {
-  require(stride_px >= 1, "stride_px", "must be >= 1");
-  require(normal_smoothing_size > 0.0, "normal_smoothing_size", "must be > 0");
-  require(max_depth_change_factor > 0.0, "max_depth_change_factor", "must be > 0");
-  require(neighbours >= 3, "neighbours", "must be >= 3");
-  require(smoothness_threshold_deg > 0.0 && smoothness_threshold_deg < 90.0, "smoothness_threshold_deg", "must be in (0, 90)");
-  require(curvature_threshold > 0.0, "curvature_threshold", "must be > 0");
-  require(min_region_points >= 3, "min_region_points", "must be >= 3");
-  require(footprint_plane_distance_m > 0.0, "footprint_plane_distance_m", "must be > 0");
-  require(depth_noise_at_1m_m >= 0.0, "depth_noise_at_1m_m", "must be >= 0");
-  require(min_area_px >= 1, "min_area_px", "must be >= 1");
-  require(max_footprint_overlap >= 0.0 && max_footprint_overlap <= 1.0, "max_footprint_overlap", "must be in [0, 1]");
+  const ParamCheck check("region growing");
+  check.require(stride_px >= 1, "stride_px", "must be >= 1");
+  check.require(normal_smoothing_size > 0.0, "normal_smoothing_size", "must be > 0");
+  check.require(max_depth_change_factor > 0.0, "max_depth_change_factor", "must be > 0");
+  check.require(neighbours >= 3, "neighbours", "must be >= 3");
+  check.require(smoothness_threshold_deg > 0.0 && smoothness_threshold_deg < 90.0,
+                "smoothness_threshold_deg", "must be in (0, 90)");
+  check.require(curvature_threshold > 0.0, "curvature_threshold", "must be > 0");
+  check.require(min_region_points >= 3, "min_region_points", "must be >= 3");
+  check.require(footprint_plane_distance_m > 0.0, "footprint_plane_distance_m", "must be > 0");
+  check.require(depth_noise_at_1m_m >= 0.0, "depth_noise_at_1m_m", "must be >= 0");
+  check.require(min_area_px >= 1, "min_area_px", "must be >= 1");
+  check.require(max_footprint_overlap >= 0.0 && max_footprint_overlap <= 1.0,
+                "max_footprint_overlap", "must be in [0, 1]");
 }
 
 RegionGrowingSegmenter::RegionGrowingSegmenter(const RegionGrowingParams& params) : params_(params) { params_.validate(); }
@@ -165,7 +163,7 @@ std::vector<Segment> RegionGrowingSegmenter::segment(const RgbdFrame& frame) con
   region_growing.setInputCloud(strided);
   region_growing.setIndices(valid);
   region_growing.setInputNormals(normals);
-  region_growing.setSmoothnessThreshold(static_cast<float>(params_.smoothness_threshold_deg * kPi / 180.0));
+  region_growing.setSmoothnessThreshold(static_cast<float>(params_.smoothness_threshold_deg * kDegToRad));
   region_growing.setCurvatureThreshold(static_cast<float>(params_.curvature_threshold));
   std::vector<pcl::PointIndices> regions;
   region_growing.extract(regions);
