@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <mutex>
 
-#include <dynamic_reconfigure/server.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/callback_queue.h>
 #include <tf2_eigen/tf2_eigen.h>
@@ -32,7 +31,7 @@
 #include "brick_pose/pose/brick_tracker.h"
 #include "brick_pose/ros/brick_markers.h"
 #include "brick_pose/ros/conversions.h"
-#include "brick_pose/ros/stage_nodelet.h"
+#include "brick_pose/ros/estimator_stage_nodelet.h"
 
 namespace brick_pose
 {
@@ -74,10 +73,10 @@ std::size_t findFrame(const BrickDetectionArray& detections, const std::string& 
 }
 }  // namespace
 
-class PoseCorrectionNodelet : public StageNodelet
+class PoseCorrectionNodelet : public EstimatorStageNodelet<PoseCorrectionConfig>
 {
 public:
-  PoseCorrectionNodelet() : StageNodelet("pose_correction", "registered", "bricks") {}
+  PoseCorrectionNodelet() : EstimatorStageNodelet("pose_correction", "registered", "bricks") {}
 
   ~PoseCorrectionNodelet() override
   {
@@ -89,8 +88,7 @@ public:
 private:
   void initStage(const ParamLookup& lookup) override
   {
-    catalogue_ = catalogueFrom(lookup);
-    estimator_ = std::make_unique<BrickPoseEstimator>(catalogue_, estimatorParamsFrom(lookup));
+    initEstimator(lookup);
     tracker_ = BrickTracker(trackerParamsFrom(lookup));
     tracked_params_ = trackedPoseParamsFrom(lookup);
     tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
@@ -115,44 +113,37 @@ private:
     NODELET_INFO("service %s (own thread)", service_.getService().c_str());
   }
 
-  /// Refinement method and correction mode are switched live; the server
-  /// starts from the values loaded above, not from the .cfg defaults.
-  void startReconfigure()
+  // Refinement method and correction mode are switched live.
+  PoseCorrectionConfig configOf(const BrickPoseEstimatorParams& params) const override
   {
-    reconfigure_ = std::make_unique<dynamic_reconfigure::Server<PoseCorrectionConfig>>(reconfigure_mutex_, getPrivateNodeHandle());
-    const BrickPoseEstimatorParams& params = estimator_->params();
     PoseCorrectionConfig config;
     config.refinement = toString(params.refinement);
     config.correction_mode = toString(params.correction.mode);
     config.icp_max_correspondence_m = params.icp.max_correspondence_distance_m;
     config.icp_max_iterations = params.icp.max_iterations;
-    reconfigure_->updateConfig(config);
-    reconfigure_->setCallback([this](const PoseCorrectionConfig& update, std::uint32_t) { reconfigure(update); });
+    return config;
   }
 
-  void reconfigure(const PoseCorrectionConfig& config)
+  BrickPoseEstimatorParams applied(const PoseCorrectionConfig& config, BrickPoseEstimatorParams params) const override
   {
-    BrickPoseEstimatorParams params = estimator_->params();
-    try
-    {
-      params.refinement = parseRefinementMethod(config.refinement);
-      params.correction.mode = parseCorrectionMode(config.correction_mode);
-      params.icp.max_correspondence_distance_m = config.icp_max_correspondence_m;
-      params.icp.max_iterations = config.icp_max_iterations;
-      estimator_ = std::make_unique<BrickPoseEstimator>(catalogue_, params);
-      NODELET_INFO("refinement %s (correction mode %s)", toString(params.refinement), toString(params.correction.mode));
-    }
-    catch (const ConfigError& e)
-    {
-      NODELET_ERROR("reconfigure rejected, keeping the previous parameters: %s", e.what());
-    }
+    params.refinement = parseRefinementMethod(config.refinement);
+    params.correction.mode = parseCorrectionMode(config.correction_mode);
+    params.icp.max_correspondence_distance_m = config.icp_max_correspondence_m;
+    params.icp.max_iterations = config.icp_max_iterations;
+    return params;
+  }
+
+  std::string describe(const BrickPoseEstimatorParams& params) const override
+  {
+    return std::string("refinement ") + toString(params.refinement) + " (correction mode " +
+           toString(params.correction.mode) + ")";
   }
 
   void onRegistrations(const RegistrationsMessageConstPtr& registrations)
   {
     frameIn();
     const FrameMessage& frame = *registrations->candidates->frame;
-    const ros::WallTime start = ros::WallTime::now();
+    const auto start = SteadyClock::now();
     const auto& candidates = registrations->candidates->front_end.candidates;
     std::vector<BrickPoseEstimate> estimates;
     std::vector<const BrickCandidate*> refined;
@@ -175,7 +166,7 @@ private:
       }
     }
     itemsProcessed(static_cast<int>(registrations->registered.size()), static_cast<int>(estimates.size()));
-    const double refinement_ms = (ros::WallTime::now() - start).toSec() * 1e3;
+    const double refinement_ms = millisecondsSince(start);
     auto detections = makeDetections(*registrations, estimates, refined, sources);
     detections->refinement_ms = refinement_ms;
     publish(detections, frame);
@@ -378,14 +369,8 @@ private:
   }
 
   // The service thread reads only catalogue_ (never replaced) and latest_.
-  BrickCatalogue catalogue_;
-  // Replaced whole on reconfigure, on the same single-threaded queue as the
-  // registrations callback that uses it.
-  std::unique_ptr<BrickPoseEstimator> estimator_;
   BrickTracker tracker_;
   TrackedPoseParams tracked_params_;
-  boost::recursive_mutex reconfigure_mutex_;
-  std::unique_ptr<dynamic_reconfigure::Server<PoseCorrectionConfig>> reconfigure_;
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   tf2_ros::TransformBroadcaster broadcaster_;

@@ -11,7 +11,8 @@
 // frame goes on with the others. Overlap, delta, sample size and the time
 // budget are dynamic_reconfigure parameters.
 
-#include <dynamic_reconfigure/server.h>
+#include <cstdio>
+
 #include <pluginlib/class_list_macros.hpp>
 
 #include "brick_pose/BrickDetectionArray.h"
@@ -21,20 +22,19 @@
 #include "brick_pose/pose/registration_order.h"
 #include "brick_pose/pose/tracked_pose.h"
 #include "brick_pose/ros/conversions.h"
-#include "brick_pose/ros/stage_nodelet.h"
+#include "brick_pose/ros/estimator_stage_nodelet.h"
 
 namespace brick_pose
 {
-class RegistrationNodelet : public StageNodelet
+class RegistrationNodelet : public EstimatorStageNodelet<RegistrationConfig>
 {
 public:
-  RegistrationNodelet() : StageNodelet("registration", "candidates", "registered") {}
+  RegistrationNodelet() : EstimatorStageNodelet("registration", "candidates", "registered") {}
 
 private:
   void initStage(const ParamLookup& lookup) override
   {
-    catalogue_ = catalogueFrom(lookup);
-    estimator_ = std::make_unique<BrickPoseEstimator>(catalogue_, estimatorParamsFrom(lookup));
+    initEstimator(lookup);
     budget_ = registrationStageParamsFrom(lookup);
     previous_poses_ = PreviousPoses(trackedPoseParamsFrom(lookup));
     detections_subscriber_ = node().subscribe("detections", 1, &RegistrationNodelet::onDetections, this);
@@ -43,38 +43,33 @@ private:
     startReconfigure();
   }
 
-  /// Super4PCS's accuracy and budget are tuned live; the server starts from
-  /// the values loaded above, not from the .cfg defaults.
-  void startReconfigure()
+  // Super4PCS's accuracy and budget are tuned live.
+  RegistrationConfig configOf(const BrickPoseEstimatorParams& params) const override
   {
-    reconfigure_ = std::make_unique<dynamic_reconfigure::Server<RegistrationConfig>>(reconfigure_mutex_, getPrivateNodeHandle());
-    const auto& params = estimator_->params().super4pcs;
     RegistrationConfig config;
-    config.overlap = params.overlap;
-    config.delta_m = params.delta_m;
-    config.sample_size = params.sample_size;
-    config.max_time_s = params.max_time_s;
-    reconfigure_->updateConfig(config);
-    reconfigure_->setCallback([this](const RegistrationConfig& update, std::uint32_t) { reconfigure(update); });
+    config.overlap = params.super4pcs.overlap;
+    config.delta_m = params.super4pcs.delta_m;
+    config.sample_size = params.super4pcs.sample_size;
+    config.max_time_s = params.super4pcs.max_time_s;
+    return config;
   }
 
-  void reconfigure(const RegistrationConfig& config)
+  BrickPoseEstimatorParams applied(const RegistrationConfig& config, BrickPoseEstimatorParams params) const override
   {
-    BrickPoseEstimatorParams params = estimator_->params();
     params.super4pcs.overlap = config.overlap;
     params.super4pcs.delta_m = config.delta_m;
     params.super4pcs.sample_size = config.sample_size;
     params.super4pcs.max_time_s = config.max_time_s;
-    try
-    {
-      estimator_ = std::make_unique<BrickPoseEstimator>(catalogue_, params);
-      NODELET_INFO("Super4PCS: overlap %.2f, delta %.1f mm, %d samples, budget %.0f ms", params.super4pcs.overlap,
-                   params.super4pcs.delta_m * 1e3, params.super4pcs.sample_size, params.super4pcs.max_time_s * 1e3);
-    }
-    catch (const ConfigError& e)
-    {
-      NODELET_ERROR("reconfigure rejected, keeping the previous parameters: %s", e.what());
-    }
+    return params;
+  }
+
+  std::string describe(const BrickPoseEstimatorParams& params) const override
+  {
+    const Super4PCSParams& super4pcs = params.super4pcs;
+    char text[160];
+    std::snprintf(text, sizeof(text), "Super4PCS: overlap %.2f, delta %.1f mm, %d samples, budget %.0f ms",
+                  super4pcs.overlap, super4pcs.delta_m * 1e3, super4pcs.sample_size, super4pcs.max_time_s * 1e3);
+    return text;
   }
 
   /// The latest final poses, for the tracked path (only the correction
@@ -92,12 +87,10 @@ private:
 
   void onCandidates(const CandidatesMessageConstPtr& candidates)
   {
-    frameIn();
     const FrameMessage& frame = *candidates->frame;
-    if (!withinLatencyBudget(frame)) return;
-    const ros::WallTime start = ros::WallTime::now();
-    auto message = boost::make_shared<RegistrationsMessage>();
-    message->header = candidates->header;
+    if (!acceptFrame(frame)) return;
+    const auto start = SteadyClock::now();
+    auto message = outputFor<RegistrationsMessage>(*candidates);
     message->candidates = candidates;
     const auto& list = candidates->front_end.candidates;
     // Tracked bricks cost nothing here; the rest share the frame's budget.
@@ -117,7 +110,7 @@ private:
     std::size_t skipped = 0;
     for (std::size_t rank = 0; rank < order.size(); ++rank)
     {
-      const double spent_ms = (ros::WallTime::now() - start).toSec() * 1e3;
+      const double spent_ms = millisecondsSince(start);
       if (spent_ms > budget_.max_frame_registration_ms)
       {
         skipped = order.size() - rank;
@@ -130,10 +123,10 @@ private:
       itemDropped("skipped for the frame budget (first in the next frame)", static_cast<int>(skipped));
       NODELET_DEBUG("%s: %zu of %zu candidates skipped after %.0f ms (max_frame_registration_ms %.0f); "
                     "they go first in the next frame", frameLabel(frame).c_str(), skipped, searched.size(),
-                    (ros::WallTime::now() - start).toSec() * 1e3, budget_.max_frame_registration_ms);
+                    millisecondsSince(start), budget_.max_frame_registration_ms);
     }
     itemsProcessed(static_cast<int>(list.size()), static_cast<int>(message->registered.size()));
-    message->registration_ms = (ros::WallTime::now() - start).toSec() * 1e3;
+    message->registration_ms = millisecondsSince(start);
     registrations_publisher_.publish(RegistrationsMessageConstPtr(message));
     frameOut(frame, message->registration_ms);
   }
@@ -154,15 +147,9 @@ private:
     }
   }
 
-  BrickCatalogue catalogue_;
   RegistrationStageParams budget_;
   RegistrationOrder order_;
   PreviousPoses previous_poses_;
-  // Replaced whole on reconfigure; the subscriber and the reconfigure server
-  // share the nodelet's single-threaded queue, so no lock is needed.
-  std::unique_ptr<BrickPoseEstimator> estimator_;
-  boost::recursive_mutex reconfigure_mutex_;
-  std::unique_ptr<dynamic_reconfigure::Server<RegistrationConfig>> reconfigure_;
   ros::Subscriber candidates_subscriber_;
   ros::Subscriber detections_subscriber_;
   ros::Publisher registrations_publisher_;

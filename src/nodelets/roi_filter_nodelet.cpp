@@ -36,12 +36,10 @@ private:
 
   void onSegments(const SegmentsMessageConstPtr& segments)
   {
-    frameIn();
     const FrameMessage& frame = *segments->frame;
-    if (!withinLatencyBudget(frame)) return;
-    const ros::WallTime start = ros::WallTime::now();
-    auto message = boost::make_shared<CandidatesMessage>();
-    message->header = segments->header;
+    if (!acceptFrame(frame)) return;
+    const auto start = SteadyClock::now();
+    auto message = outputFor<CandidatesMessage>(*segments);
     message->frame = segments->frame;
     message->segments = segments;
     message->front_end.timings.segmentation_ms = segments->segmentation_ms;
@@ -55,7 +53,7 @@ private:
       NODELET_ERROR_THROTTLE(2.0, "dropping %s: ROI filtration failed: %s", frameLabel(frame).c_str(), e.what());
       return;
     }
-    const double roi_ms = (ros::WallTime::now() - start).toSec() * 1e3;
+    const double roi_ms = millisecondsSince(start);
     message->front_end.timings.total_ms = segments->segmentation_ms + roi_ms;
     account(frame, *message);
     candidates_publisher_.publish(CandidatesMessageConstPtr(message));

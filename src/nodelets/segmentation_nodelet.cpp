@@ -26,11 +26,9 @@ private:
 
   void onFrame(const FrameMessageConstPtr& frame)
   {
-    frameIn();
-    if (!withinLatencyBudget(*frame)) return;
-    const ros::WallTime start = ros::WallTime::now();
-    auto message = boost::make_shared<SegmentsMessage>();
-    message->header = frame->header;
+    if (!acceptFrame(*frame)) return;
+    const auto start = SteadyClock::now();
+    auto message = outputFor<SegmentsMessage>(*frame);
     message->frame = frame;
     try
     {
@@ -42,7 +40,7 @@ private:
       NODELET_ERROR_THROTTLE(2.0, "dropping %s: segmentation failed: %s", frameLabel(*frame).c_str(), e.what());
       return;
     }
-    message->segmentation_ms = (ros::WallTime::now() - start).toSec() * 1e3;
+    message->segmentation_ms = millisecondsSince(start);
     segments_publisher_.publish(SegmentsMessageConstPtr(message));
     frameOut(*frame, message->segmentation_ms);
   }

@@ -10,14 +10,10 @@ namespace brick_pose
 {
 namespace sim
 {
-namespace
-{
-constexpr EnumName<Lighting> kLightingNames[] = {{Lighting::kNormal, "normal"},
-                                                 {Lighting::kSunlight, "sunlight"},
-                                                 {Lighting::kLowLight, "low_light"}};
+constexpr EnumName<Lighting> kLightingNames[] = {
+    {Lighting::kNormal, "normal"}, {Lighting::kSunlight, "sunlight"}, {Lighting::kLowLight, "low_light"}};
 
 constexpr EnumName<DepthModel> kDepthModelNames[] = {{DepthModel::kIdeal, "ideal"}, {DepthModel::kD4xx, "d4xx"}};
-}  // namespace
 
 Lighting lightingFromString(const std::string& name)
 {

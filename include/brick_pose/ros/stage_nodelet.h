@@ -9,10 +9,12 @@
 #include <memory>
 #include <string>
 
+#include <boost/make_shared.hpp>
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <nodelet/nodelet.h>
 #include <ros/ros.h>
 
+#include "brick_pose/common/elapsed.h"
 #include "brick_pose/common/param_parsing.h"
 #include "brick_pose/pipeline/pipeline_config.h"
 #include "brick_pose/pipeline/stage_stats.h"
@@ -57,6 +59,23 @@ protected:
   /// False, counted and warned about (throttled), when `frame` is already
   /// older than max_latency_ms: a stage spends no time on it.
   bool withinLatencyBudget(const FrameMessage& frame);
+
+  /// The stage's output for `input`: a new message with the input's header
+  /// (the camera frame's stamp and optical frame all the way down).
+  template <typename Output, typename Input>
+  static boost::shared_ptr<Output> outputFor(const Input& input)
+  {
+    auto output = boost::make_shared<Output>();
+    output->header = input.header;
+    return output;
+  }
+
+  /// frameIn(), then withinLatencyBudget(): whether to work on `frame`.
+  bool acceptFrame(const FrameMessage& frame)
+  {
+    frameIn();
+    return withinLatencyBudget(frame);
+  }
 
   /// Bookkeeping of the stage's work, reported every report_period_s.
   void frameIn();

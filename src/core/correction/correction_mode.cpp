@@ -4,11 +4,8 @@
 
 namespace brick_pose
 {
-namespace
-{
-constexpr EnumName<CorrectionMode> kCorrectionModeNames[] = {{CorrectionMode::kPaper, "paper"},
-                                                             {CorrectionMode::kFull, "full"}};
-}  // namespace
+constexpr EnumName<CorrectionMode> kCorrectionModeNames[] = {
+    {CorrectionMode::kPaper, "paper"}, {CorrectionMode::kFull, "full"}};
 
 CorrectionMode parseCorrectionMode(const std::string& name)
 {

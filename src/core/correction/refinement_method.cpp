@@ -4,12 +4,8 @@
 
 namespace brick_pose
 {
-namespace
-{
-constexpr EnumName<RefinementMethod> kRefinementMethodNames[] = {{RefinementMethod::kCorrection, "correction"},
-                                                                 {RefinementMethod::kIcp, "icp"},
-                                                                 {RefinementMethod::kNone, "none"}};
-}  // namespace
+constexpr EnumName<RefinementMethod> kRefinementMethodNames[] = {
+    {RefinementMethod::kCorrection, "correction"}, {RefinementMethod::kIcp, "icp"}, {RefinementMethod::kNone, "none"}};
 
 RefinementMethod parseRefinementMethod(const std::string& name)
 {

@@ -108,12 +108,8 @@ std::string rejectionCategory(const std::string& reason)
   return "other";
 }
 
-namespace
-{
-constexpr EnumName<SegmentationMode> kSegmentationModeNames[] = {{SegmentationMode::kHsv, "hsv"},
-                                                                 {SegmentationMode::kRegionGrowing, "region_growing"},
-                                                                 {SegmentationMode::kColourFree, "colour_free"}};
-}  // namespace
+constexpr EnumName<SegmentationMode> kSegmentationModeNames[] = {
+    {SegmentationMode::kHsv, "hsv"}, {SegmentationMode::kRegionGrowing, "region_growing"}, {SegmentationMode::kColourFree, "colour_free"}};
 
 SegmentationMode parseSegmentationMode(const std::string& name)
 {
