@@ -84,7 +84,7 @@ int main(int argc, char** argv)
   BenchResults results;
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < options.frames; ++i) runner.runFrame(i, options.seed, results);
-  const double wall_s = bench::millisecondsSince(start) / 1000.0;
+  const double wall_s = millisecondsSince(start) / 1000.0;
 
   const std::vector<MethodSummary> summaries = summariseMethods(results.bricks);
   const RegistrationSummary registration = summariseRegistration(results.bricks);

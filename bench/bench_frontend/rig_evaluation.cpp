@@ -93,7 +93,7 @@ RigResults runRig(const std::vector<BrickCatalogue>& catalogues, const std::vect
         const RenderedFrame rendered = render(*generators[spec.scene_class], classes[spec.scene_class], spec, camera);
         const auto build_start = std::chrono::steady_clock::now();
         const RgbdFrame frame = toRgbd(rendered, camera, static_cast<int>(i));
-        if (m == 0 && resolutions[r].legacy) results.frame_build_ms.push_back(bench::millisecondsSince(build_start));
+        if (m == 0 && resolutions[r].legacy) results.frame_build_ms.push_back(millisecondsSince(build_start));
         // A front end per frame: the up direction is the frame's. Building
         // one is cheap next to processing a frame.
         const FrontEnd front_end(catalogues[spec.scene_class], frontEndParamsFor(modes[m], rendered.up_in_camera));

@@ -14,7 +14,6 @@ namespace brick_pose
 {
 namespace pose_bench
 {
-using bench::millisecondsSince;
 
 namespace
 {

@@ -65,7 +65,7 @@ private:
 
   std::string describe(const BrickPoseEstimatorParams& params) const override
   {
-    const Super4PCSParams& super4pcs = params.super4pcs;
+    const registration::Super4PCSParams& super4pcs = params.super4pcs;
     char text[160];
     std::snprintf(text, sizeof(text), "Super4PCS: overlap %.2f, delta %.1f mm, %d samples, budget %.0f ms",
                   super4pcs.overlap, super4pcs.delta_m * 1e3, super4pcs.sample_size, super4pcs.max_time_s * 1e3);
