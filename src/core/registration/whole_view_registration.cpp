@@ -24,6 +24,7 @@
 #include "brick_pose/registration/strided_deadline.h"
 #include "brick_pose/registration/uniform_sampling.h"
 #include "brick_pose/registration/view_consistency.h"
+#include "brick_pose/registration/visible_surface.h"
 
 namespace brick_pose
 {
@@ -97,6 +98,7 @@ struct ViewInput
   double pair_tolerance_m = 0.0;
   double scan_diameter_m = 0.0;
   double model_diameter_m = 0.0;
+  double model_spacing_m = 0.0;  ///< median nearest-neighbour spacing of `model`
   bool bases_span_faces = false;
 };
 
@@ -192,7 +194,8 @@ ViewInput prepareInput(const PointSet& source, const PointSet& target, const Sup
 
   // The model sample as dense as the base cloud: a base point's counterpart
   // is then as close in the model sample as a face registration's would be.
-  const double model_spacing_m = neighbourSpacing(input.model.points, 0.5, rng);
+  input.model_spacing_m = neighbourSpacing(input.model.points, 0.5, rng);
+  const double model_spacing_m = input.model_spacing_m;
   const double base_spacing_m = neighbourSpacing(input.base_cloud.points, 0.5, rng);
   const double density_ratio = base_spacing_m > 0.0 ? model_spacing_m / base_spacing_m : 1.0;
   // Clamped as a double: a degenerate scan (all points within a few microns)
@@ -485,22 +488,18 @@ Eigen::Isometry3d anchoredAtNearCorner(const Eigen::Isometry3d& pose, const Eige
   return moved;
 }
 
-/// The polish of the face mode with the model's faces turned towards the
-/// viewpoint as the source.
+/// The polish of the face mode with the model's surface turned towards the
+/// viewpoint (visible_surface.h) as the source.
 Eigen::Isometry3d polishOnVisibleFaces(const ViewInput& input, const Eigen::Isometry3d& pose,
-                                       const Super4PCSParams& params, SteadyClock::time_point start,
-                                       std::mt19937_64& rng)
+                                       const ModelSymmetries& symmetries, const Super4PCSParams& params,
+                                       SteadyClock::time_point start, std::mt19937_64& rng)
 {
-  std::vector<int> facing;
-  for (std::size_t i = 0; i < input.model.size(); ++i)
-  {
-    const Eigen::Vector3d p = pose * input.model.points[i];
-    if ((pose.linear() * input.model.normals[i]).dot((params.view.viewpoint_m - p).normalized()) >= kPolishVisibleCos)
-      facing.push_back(static_cast<int>(i));
-  }
-  if (facing.size() < 4)
+  // Half a model spacing takes in a face's edge points and none of the
+  // neighbouring face's inner ones.
+  const PointSet visible = visibleModelSurface(input.model, pose, symmetries, params.view.viewpoint_m,
+                                               0.5 * input.model_spacing_m, kPolishVisibleCos);
+  if (visible.size() < 4)
     return pose;
-  const PointSet visible = input.model.subset(facing);
   // The scan without what faces away from the viewpoint (grazing strips and
   // flying-pixel curtains, which the polish's trimming does not always keep
   // out); edges stay, the boundary stage needs them.
@@ -580,7 +579,7 @@ Hypothesis polished(const Hypothesis& hypothesis, const ViewInput& input, const 
   if (params.refine_iterations <= 0)
     return hypothesis;
   Hypothesis result = hypothesis;
-  result.pose = snappedToSeenFaces(polishOnVisibleFaces(input, hypothesis.pose, params, start, rng), input, symmetries);
+  result.pose = snappedToSeenFaces(polishOnVisibleFaces(input, hypothesis.pose, symmetries, params, start, rng), input, symmetries);
   result.view = consistency.evaluate(result.pose);
   result.view_evaluated = true;
   if (result.view.combined() < hypothesis.view.combined() - kMaxScoreDropByPolish)
