@@ -12,6 +12,7 @@
 #include "brick_pose/common/angles.h"
 #include "brick_pose/common/number_text.h"
 #include "brick_pose/common/statistics.h"
+#include "brick_pose/registration/box_placement.h"
 #include "brick_pose/registration/box_view_checks.h"
 #include "brick_pose/registration/congruent_set_finder.h"
 #include "brick_pose/registration/coplanar_base.h"
@@ -81,6 +82,9 @@ constexpr double kSettledAgreementM = 0.006;
 constexpr double kPolishVisibleCos = 0.2;
 constexpr double kPolishReachPerPairTolerance = 2.5;
 constexpr int kClockStride = 32;
+// Scan points left out at each end of the scan's extent when an alternative
+// orientation is placed on it (stray points that passed the normal checks).
+constexpr int kExtentTrimPoints = 3;
 
 // Scores and fractions in reasons read to three digits.
 std::string formatScore(double value) { return numberText(value, 3); }
@@ -93,6 +97,7 @@ struct ViewInput
   PointSet model_probe;  ///< model-side checks, symmetry probe
   PointSet scan;  ///< dense scan sample, normals towards the viewpoint
   std::vector<int> trusted;  ///< scan points whose normals are trusted
+  std::vector<Eigen::Vector3d> trusted_points;  ///< their positions
   PointSet base_cloud;  ///< trusted scan points the bases are drawn from
   double match_radius_m = 0.0;
   double pair_tolerance_m = 0.0;
@@ -189,6 +194,7 @@ ViewInput prepareInput(const PointSet& source, const PointSet& target, const Sup
   input.scan.normals = normals.normals;
   input.trusted = trustedScanPoints(input.scan, normals.surface_variation, view);
   const PointSet trusted_scan = input.scan.subset(input.trusted);
+  input.trusted_points = trusted_scan.points;
   input.base_cloud = trusted_scan.subset(uniformSubsample(trusted_scan.points, params.sample_size, rng));
   input.bases_span_faces = showsSeveralFaces(input.base_cloud.normals);
 
@@ -462,32 +468,6 @@ std::string searchHypotheses(const ViewInput& input, const ViewConsistency& cons
   return stop_reason;
 }
 
-/// The hypothesis moved so that its model corner nearest the viewpoint lands
-/// where `reference` puts its own nearest corner: the corner a view of a box
-/// shows best, whatever the box's dimensions.
-Eigen::Isometry3d anchoredAtNearCorner(const Eigen::Isometry3d& pose, const Eigen::Isometry3d& reference,
-                                       const ModelSymmetries& symmetries, const Eigen::Vector3d& viewpoint)
-{
-  auto nearest = [&](const Eigen::Isometry3d& p) {
-    Eigen::Vector3d best = Eigen::Vector3d::Zero();
-    double best_distance = std::numeric_limits<double>::infinity();
-    for (const Eigen::Vector3d& corner : symmetries.corners())
-    {
-      const Eigen::Vector3d placed = p * corner;
-      const double distance = (placed - viewpoint).norm();
-      if (distance < best_distance)
-      {
-        best_distance = distance;
-        best = placed;
-      }
-    }
-    return best;
-  };
-  Eigen::Isometry3d moved = pose;
-  moved.translation() += nearest(reference) - nearest(pose);
-  return moved;
-}
-
 /// The polish of the face mode with the model's surface turned towards the
 /// viewpoint (visible_surface.h) as the source.
 Eigen::Isometry3d polishOnVisibleFaces(const ViewInput& input, const Eigen::Isometry3d& pose,
@@ -724,8 +704,8 @@ RegistrationResult alignWholeView(const PointSet& source, const PointSet& target
 
   const double refine_cpu_start_s = threadCpuSeconds();
   // Every hypothesis of the search, and every near-symmetric alternative of
-  // the best (centred as the best, and moved to its near corner), fitted and
-  // scored alike.
+  // the best (centred as the best, and placed on the scan as the camera sees
+  // a box: box_placement.h), fitted and scored alike.
   std::vector<Hypothesis> scored;
   for (const Hypothesis& hypothesis : hypotheses.all())
     scored.push_back(fitAndScore(hypothesis.pose, fit_context, input, consistency, params));
@@ -737,7 +717,8 @@ RegistrationResult alignWholeView(const PointSet& source, const PointSet& target
   {
     const Eigen::Isometry3d turned = leader * alternative;
     alternatives.push_back(turned);
-    alternatives.push_back(anchoredAtNearCorner(turned, leader, symmetries, view.viewpoint_m));
+    alternatives.push_back(
+        anchoredToScanExtent(turned, symmetries, input.trusted_points, view.viewpoint_m, kExtentTrimPoints));
   }
   for (const Eigen::Isometry3d& alternative : alternatives)
     scored.push_back(fitAndScore(alternative, fit_context, input, consistency, params));
