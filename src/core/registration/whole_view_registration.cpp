@@ -14,6 +14,7 @@
 #include "brick_pose/common/statistics.h"
 #include "brick_pose/registration/box_placement.h"
 #include "brick_pose/registration/box_view_checks.h"
+#include "brick_pose/registration/competitor_settling.h"
 #include "brick_pose/registration/congruent_set_finder.h"
 #include "brick_pose/registration/coplanar_base.h"
 #include "brick_pose/registration/icp_polish.h"
@@ -105,14 +106,6 @@ struct ViewInput
   double model_diameter_m = 0.0;
   double model_spacing_m = 0.0;  ///< median nearest-neighbour spacing of `model`
   bool bases_span_faces = false;
-};
-
-struct Hypothesis
-{
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< model -> target
-  double target_coverage = 0.0;  ///< the search's quick score
-  ViewScore view;
-  bool view_evaluated = false;
 };
 
 PointSet withUnitNormals(PointSet cloud)
@@ -567,76 +560,25 @@ Hypothesis polished(const Hypothesis& hypothesis, const ViewInput& input, const 
   return result;
 }
 
-struct Comparison
-{
-  Hypothesis best;
-  double second_best = 0.0;  ///< combined score of the best distinct pose
-  /// A competitor settled on the best pose only within kSameHypothesisOffsetM,
-  /// not within kSettledAgreementM: the view does not fix the position to
-  /// the accuracy claimed.
-  bool loosely_settled = false;
-};
-
-/// The best of the fitted hypotheses (`scored`, best first), polished, and the
-/// score of its strongest distinct competitor. Coverage scores change slowly
-/// when a pose slides along a long face (by offset / length), so a pose a
-/// few centimetres along from the best one scores nearly as well without
-/// being another answer: it lies in the same basin. A competitor within the
-/// confidence margin is therefore polished too (the boundary stage sees the
-/// ends of faces); when it settles on the best pose it is the same answer,
-/// when it settles elsewhere with a close score the view is ambiguous, and
-/// when it settles elsewhere with a better score it becomes the best.
-Comparison settleCompetitors(const std::vector<Hypothesis>& scored, const ViewInput& input,
+/// The best hypothesis polished against its competitors (competitor_settling.h).
+Comparison compareHypotheses(const std::vector<Hypothesis>& scored, const ViewInput& input,
                              const ViewConsistency& consistency, const ModelSymmetries& symmetries,
                              const Super4PCSParams& params, SteadyClock::time_point start, std::mt19937_64& rng)
 {
-  auto same = [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  CompetitorSettling settling;
+  if (params.refine_iterations > 0)
+    settling.polish = [&](const Hypothesis& hypothesis) {
+      return polished(hypothesis, input, consistency, symmetries, params, start, rng);
+    };
+  settling.same = [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
     return samePoseModuloSymmetry(a, b, symmetries, kSameHypothesisDeg, kSameHypothesisOffsetM);
   };
-  Comparison comparison;
-  comparison.best = polished(scored.front(), input, consistency, symmetries, params, start, rng);
-  // Poses settled so far other than the best, with their scores.
-  std::vector<Hypothesis> settled;
-  int polishes = 0;
-  for (std::size_t i = 1; i < scored.size(); ++i)
-  {
-    const Hypothesis& candidate = scored[i];
-    if (same(scored.front().pose, candidate.pose) || same(comparison.best.pose, candidate.pose))
-      continue;
-    bool known = false;
-    for (const Hypothesis& other : settled)
-      known = known || same(other.pose, candidate.pose);
-    if (known)
-      continue;
-    const bool close = candidate.view.combined() >= comparison.best.view.combined() - params.view.min_confidence;
-    if (!close || polishes >= kMaxSettledCompetitors || params.refine_iterations <= 0)
-    {
-      // Not settled: it counts with its fitted score (a competitor too far
-      // below to matter, or one the budget of polishes leaves as it is).
-      comparison.second_best = std::max(comparison.second_best, candidate.view.combined());
-      if (!close)
-        break;  // sorted: no later one is close either
-      continue;
-    }
-    ++polishes;
-    Hypothesis settled_candidate = polished(candidate, input, consistency, symmetries, params, start, rng);
-    if (same(comparison.best.pose, settled_candidate.pose))
-    {
-      // The same basin: the same answer, unless its floor is so flat that
-      // polishes from nearby starts end a good part of the tolerance apart.
-      comparison.loosely_settled =
-          comparison.loosely_settled || !samePoseModuloSymmetry(comparison.best.pose, settled_candidate.pose, symmetries,
-                                                                kSameHypothesisDeg, kSettledAgreementM);
-      continue;
-    }
-    if (settled_candidate.view.combined() > comparison.best.view.combined())
-      std::swap(settled_candidate, comparison.best);
-    settled.push_back(settled_candidate);
-  }
-  for (const Hypothesis& other : settled)
-    if (!same(comparison.best.pose, other.pose))
-      comparison.second_best = std::max(comparison.second_best, other.view.combined());
-  return comparison;
+  settling.agree = [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+    return samePoseModuloSymmetry(a, b, symmetries, kSameHypothesisDeg, kSettledAgreementM);
+  };
+  settling.min_confidence = params.view.min_confidence;
+  settling.max_polishes = kMaxSettledCompetitors;
+  return settleCompetitors(scored, settling);
 }
 }  // namespace
 
@@ -728,7 +670,7 @@ RegistrationResult alignWholeView(const PointSet& source, const PointSet& target
   for (const Eigen::Isometry3d& alternative : slidAlternatives(scored.front().pose, input, symmetries))
     scored.push_back(fitAndScore(alternative, fit_context, input, consistency, params));
   std::stable_sort(scored.begin(), scored.end(), by_score);
-  const Comparison comparison = settleCompetitors(scored, input, consistency, symmetries, params, start, rng);
+  const Comparison comparison = compareHypotheses(scored, input, consistency, symmetries, params, start, rng);
   const Hypothesis& best = comparison.best;
   const double second_best = comparison.second_best;
   result.refine_cpu_s = threadCpuSeconds() - refine_cpu_start_s;

@@ -1,0 +1,88 @@
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "brick_pose/registration/competitor_settling.h"
+
+namespace brick_pose
+{
+namespace registration
+{
+namespace
+{
+/// A hypothesis at x_m along a long face, with a combined score of `score`
+/// (target coverage alone: the other factors are 1 and 0).
+Hypothesis at(double x_m, double score)
+{
+  Hypothesis hypothesis;
+  hypothesis.pose.translation() = Eigen::Vector3d(x_m, 0.0, 0.0);
+  hypothesis.view.target_coverage = score;
+  hypothesis.view.model_coverage = 1.0;
+  hypothesis.view.free_space_violation = 0.0;
+  return hypothesis;
+}
+
+/// Poses within 12 mm are one hypothesis; polishes agree within 6 mm.
+/// The polish moves every start within 0.1 m of the origin onto the origin
+/// (one basin, score 0.95), and leaves the others where they are.
+CompetitorSettling oneBasin(int& polishes)
+{
+  CompetitorSettling settling;
+  settling.polish = [&polishes](const Hypothesis& start) {
+    ++polishes;
+    return start.pose.translation().norm() < 0.1 ? at(0.0, 0.95) : start;
+  };
+  settling.same = [](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+    return (a.translation() - b.translation()).norm() <= 0.012;
+  };
+  settling.agree = [](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+    return (a.translation() - b.translation()).norm() <= 0.006;
+  };
+  settling.min_confidence = 0.08;
+  settling.max_polishes = 3;
+  return settling;
+}
+}  // namespace
+
+// The search and the alternatives found the competitor at 35 mm three times
+// (within a few mm); polished once, it settles on the best. The other two
+// copies must not spend the rest of the budget: the distinct competitor at
+// 60 mm, close in score, is polished and settles on the best too, so no
+// competitor is left within the margin.
+TEST(CompetitorSettling, ACopyOfAPolishedStartSpendsNoPolish)
+{
+  int polishes = 0;
+  const std::vector<Hypothesis> scored{at(0.002, 0.92), at(0.035, 0.90), at(0.038, 0.90), at(0.032, 0.89),
+                                       at(0.060, 0.88)};
+  const Comparison comparison = settleCompetitors(scored, oneBasin(polishes));
+  EXPECT_EQ(comparison.competitors_polished, 2);
+  EXPECT_EQ(polishes, 3);  // the best and two competitors
+  EXPECT_DOUBLE_EQ(comparison.best.view.combined(), 0.95);
+  EXPECT_DOUBLE_EQ(comparison.second_best, 0.0);
+  EXPECT_FALSE(comparison.loosely_settled);
+}
+
+// A competitor that settles elsewhere with a close score is another answer.
+TEST(CompetitorSettling, ACompetitorSettledElsewhereKeepsTheMarginSmall)
+{
+  int polishes = 0;
+  const std::vector<Hypothesis> scored{at(0.0, 0.92), at(0.3, 0.91)};
+  const Comparison comparison = settleCompetitors(scored, oneBasin(polishes));
+  EXPECT_DOUBLE_EQ(comparison.best.view.combined(), 0.95);
+  EXPECT_DOUBLE_EQ(comparison.second_best, 0.91);
+}
+
+// Without a polish every competitor counts with its fitted score.
+TEST(CompetitorSettling, WithoutAPolishFittedScoresCount)
+{
+  int polishes = 0;
+  CompetitorSettling settling = oneBasin(polishes);
+  settling.polish = nullptr;
+  const std::vector<Hypothesis> scored{at(0.0, 0.92), at(0.035, 0.90)};
+  const Comparison comparison = settleCompetitors(scored, settling);
+  EXPECT_DOUBLE_EQ(comparison.best.view.combined(), 0.92);
+  EXPECT_DOUBLE_EQ(comparison.second_best, 0.90);
+  EXPECT_EQ(comparison.competitors_polished, 0);
+}
+}  // namespace registration
+}  // namespace brick_pose
