@@ -370,12 +370,41 @@ Hypothesis fitAndScore(const Eigen::Isometry3d& pose, const FitContext& context,
   return hypothesis;
 }
 
+/// The pose turned into each other axis-aligned orientation of the model's
+/// box (one per class modulo its true symmetries) and placed on the scan as
+/// the camera sees a box (box_placement.h).
+std::vector<Eigen::Isometry3d> placedAlternatives(const Eigen::Isometry3d& pose, const ViewInput& input,
+                                                  const ModelSymmetries& symmetries, const Eigen::Vector3d& viewpoint_m)
+{
+  std::vector<Eigen::Isometry3d> placed;
+  for (const Eigen::Isometry3d& alternative : symmetries.alternatives)
+    placed.push_back(anchoredToScanExtent(pose * alternative, symmetries, input.trusted_points, viewpoint_m,
+                                          kExtentTrimPoints));
+  return placed;
+}
+
+/// The first of the placed alternatives of `leader` that passes the view
+/// acceptance once fitted, if any.
+std::optional<Hypothesis> acceptedAlternative(const Hypothesis& leader, const ViewInput& input,
+                                              const ViewConsistency& consistency, const ModelSymmetries& symmetries,
+                                              const FitContext& fit_context, const Super4PCSParams& params)
+{
+  for (const Eigen::Isometry3d& alternative : placedAlternatives(leader.pose, input, symmetries, params.view.viewpoint_m))
+  {
+    const Hypothesis fitted = fitAndScore(alternative, fit_context, input, consistency, params);
+    if (passesAcceptance(fitted.view, params.view))
+      return fitted;
+  }
+  return std::nullopt;
+}
+
 /// Draws bases from the scan and verifies their congruent sets in the model
 /// until a pose passes the view acceptance with a high scan coverage, or the
 /// work or time budget is spent.
 std::string searchHypotheses(const ViewInput& input, const ViewConsistency& consistency, const FitContext& fit_context,
-                             const Super4PCSParams& params, SteadyClock::time_point start, std::mt19937_64& rng,
-                             HypothesisList& hypotheses, RegistrationResult& result)
+                             const ModelSymmetries& symmetries, const Super4PCSParams& params,
+                             SteadyClock::time_point start, std::mt19937_64& rng, HypothesisList& hypotheses,
+                             RegistrationResult& result)
 {
   const ShellPairIndex pair_index(input.model_sample.points, input.pair_tolerance_m);
   const CongruentSetFinder finder(input.model_sample, pair_index);
@@ -387,6 +416,7 @@ std::string searchHypotheses(const ViewInput& input, const ViewConsistency& cons
   const ViewRegistrationParams& view = params.view;
 
   std::string stop_reason;
+  bool alternatives_tried = false;
   int base_draw_failures = 0;
   std::vector<Eigen::Vector3d> base_points(4);
   std::vector<Eigen::Vector3d> set_points(4);
@@ -455,7 +485,23 @@ std::string searchHypotheses(const ViewInput& input, const ViewConsistency& cons
         stop_reason = "a pose passed the view checks";
         return false;
       }
-      return true;
+      // A leader that covers the scan but fails the view checks is most
+      // often the right surface in the wrong orientation (a brick's end face
+      // matched as part of a side, which the search can match anywhere along
+      // the side, using up its budget): its other orientations, placed on
+      // the scan, are tried once, as the final comparison would.
+      if (alternatives_tried || !symmetries.box_like)
+        return true;
+      alternatives_tried = true;
+      const std::optional<Hypothesis> accepted =
+          acceptedAlternative(hypothesis, input, consistency, symmetries, fit_context, params);
+      if (!accepted)
+        return true;
+      const int index = hypotheses.offer(accepted->pose, accepted->target_coverage);
+      if (index >= 0)
+        hypotheses.at(index) = *accepted;
+      stop_reason = "another orientation of the box passed the view checks";
+      return false;
     });
   }
   return stop_reason;
@@ -635,7 +681,7 @@ RegistrationResult alignWholeView(const PointSet& source, const PointSet& target
   const double search_cpu_start_s = threadCpuSeconds();
   HypothesisList hypotheses(view.kept_hypotheses, symmetries, kSameHypothesisOffsetM);
   const FitContext fit_context(input, kHypothesisFitRadiusPerMatchRadius * input.match_radius_m);
-  result.reason = searchHypotheses(input, consistency, fit_context, params, start, rng, hypotheses, result);
+  result.reason = searchHypotheses(input, consistency, fit_context, symmetries, params, start, rng, hypotheses, result);
   result.search_cpu_s = threadCpuSeconds() - search_cpu_start_s;
   if (hypotheses.all().empty())
   {
@@ -656,12 +702,9 @@ RegistrationResult alignWholeView(const PointSet& source, const PointSet& target
   const Eigen::Isometry3d leader = scored.front().pose;
   std::vector<Eigen::Isometry3d> alternatives = slidAlternatives(leader, input, symmetries);
   for (const Eigen::Isometry3d& alternative : symmetries.alternatives)
-  {
-    const Eigen::Isometry3d turned = leader * alternative;
-    alternatives.push_back(turned);
-    alternatives.push_back(
-        anchoredToScanExtent(turned, symmetries, input.trusted_points, view.viewpoint_m, kExtentTrimPoints));
-  }
+    alternatives.push_back(leader * alternative);
+  for (const Eigen::Isometry3d& placed : placedAlternatives(leader, input, symmetries, view.viewpoint_m))
+    alternatives.push_back(placed);
   for (const Eigen::Isometry3d& alternative : alternatives)
     scored.push_back(fitAndScore(alternative, fit_context, input, consistency, params));
   // The alternatives' own slides: a near-symmetric pose of a box whose
