@@ -84,5 +84,16 @@ TEST(CompetitorSettling, WithoutAPolishFittedScoresCount)
   EXPECT_DOUBLE_EQ(comparison.second_best, 0.90);
   EXPECT_EQ(comparison.competitors_polished, 0);
 }
+// A polish that stays within the hypothesis is kept though its score is a
+// little lower (the coverage cannot resolve a centimetre along a long
+// face); one that leaves it for a clearly lower score is not.
+TEST(CompetitorSettling, APolishWithinTheHypothesisIsKeptDespiteASmallScoreDrop)
+{
+  int polishes = 0;
+  const CompetitorSettling settling = oneBasin(polishes);
+  EXPECT_TRUE(polishKept(at(0.0119, 0.846), at(0.001, 0.814), settling.same, 0.03));
+  EXPECT_FALSE(polishKept(at(0.0, 0.846), at(0.05, 0.80), settling.same, 0.03));
+  EXPECT_TRUE(polishKept(at(0.0, 0.846), at(0.05, 0.83), settling.same, 0.03));
+}
 }  // namespace registration
 }  // namespace brick_pose

@@ -19,6 +19,13 @@ bool repeatsAny(const Eigen::Isometry3d& pose, const std::vector<Eigen::Isometry
 }
 }  // namespace
 
+bool polishKept(const Hypothesis& start, const Hypothesis& polished,
+                const std::function<bool(const Eigen::Isometry3d&, const Eigen::Isometry3d&)>& same,
+                double max_score_drop)
+{
+  return same(start.pose, polished.pose) || polished.view.combined() >= start.view.combined() - max_score_drop;
+}
+
 Comparison settleCompetitors(const std::vector<Hypothesis>& scored, const CompetitorSettling& settling)
 {
   Comparison comparison;

@@ -591,7 +591,8 @@ Eigen::Isometry3d snappedToSeenFaces(const Eigen::Isometry3d& pose, const ViewIn
 }
 
 /// The polished pose and its score, or the pose as it was when the polish
-/// lost more than kMaxScoreDropByPolish of its score.
+/// left the hypothesis and lost more than kMaxScoreDropByPolish of its score
+/// (polishKept).
 Hypothesis polished(const Hypothesis& hypothesis, const ViewInput& input, const ViewConsistency& consistency,
                     const ModelSymmetries& symmetries, const Super4PCSParams& params, SteadyClock::time_point start, std::mt19937_64& rng)
 {
@@ -601,7 +602,10 @@ Hypothesis polished(const Hypothesis& hypothesis, const ViewInput& input, const 
   result.pose = snappedToSeenFaces(polishOnVisibleFaces(input, hypothesis.pose, symmetries, params, start, rng), input, symmetries);
   result.view = consistency.evaluate(result.pose);
   result.view_evaluated = true;
-  if (result.view.combined() < hypothesis.view.combined() - kMaxScoreDropByPolish)
+  auto same = [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+    return samePoseModuloSymmetry(a, b, symmetries, kSameHypothesisDeg, kSameHypothesisOffsetM);
+  };
+  if (!polishKept(hypothesis, result, same, kMaxScoreDropByPolish))
     return hypothesis;
   return result;
 }
