@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "brick_pose/registration/competitor_settling.h"
@@ -94,6 +95,30 @@ TEST(CompetitorSettling, APolishWithinTheHypothesisIsKeptDespiteASmallScoreDrop)
   EXPECT_TRUE(polishKept(at(0.0119, 0.846), at(0.001, 0.814), settling.same, 0.03));
   EXPECT_FALSE(polishKept(at(0.0, 0.846), at(0.05, 0.80), settling.same, 0.03));
   EXPECT_TRUE(polishKept(at(0.0, 0.846), at(0.05, 0.83), settling.same, 0.03));
+}
+// A competitor's polish from 37 mm that stops 10 mm short of the best has
+// not shown a flat basin: once more from there it reaches the best, and the
+// view is not called loose. One that stops short again is.
+TEST(CompetitorSettling, AStopShortPolishIsContinuedBeforeTheBasinIsCalledFlat)
+{
+  int polishes = 0;
+  CompetitorSettling settling = oneBasin(polishes);
+  // Each polish halves the distance to the best (at 0) and scores 0.95.
+  settling.polish = [&polishes](const Hypothesis& start) {
+    ++polishes;
+    return at(0.5 * start.pose.translation().x(), 0.95);
+  };
+  const Comparison converging = settleCompetitors({at(0.0, 0.92), at(0.020, 0.90)}, settling);
+  EXPECT_FALSE(converging.loosely_settled);  // 20 -> 10 -> 5 mm
+  EXPECT_DOUBLE_EQ(converging.second_best, 0.0);
+
+  settling.polish = [&polishes](const Hypothesis& start) {
+    ++polishes;
+    const double x_m = start.pose.translation().x();
+    return at(x_m > 0.0 ? std::max(0.009, 0.5 * x_m) : x_m, 0.95);  // a competitor sticks at 9 mm
+  };
+  const Comparison flat = settleCompetitors({at(0.0, 0.92), at(0.020, 0.90)}, settling);
+  EXPECT_TRUE(flat.loosely_settled);
 }
 }  // namespace registration
 }  // namespace brick_pose

@@ -72,7 +72,10 @@ bool polishKept(const Hypothesis& start, const Hypothesis& polished,
 /// polished, and the score of its strongest distinct competitor. A candidate
 /// that repeats a start already polished (the search and the alternatives
 /// often find one pose twice) lies in a basin already settled and spends no
-/// polish of the budget.
+/// polish of the budget. A competitor whose polish ends in the best's basin
+/// but not within `agree` of the best is polished once more from there before
+/// the view is called loose: from a far start the polish's shrinking radii can
+/// stop it short.
 Comparison settleCompetitors(const std::vector<Hypothesis>& scored, const CompetitorSettling& settling);
 }  // namespace registration
 }  // namespace brick_pose

@@ -56,6 +56,12 @@ Comparison settleCompetitors(const std::vector<Hypothesis>& scored, const Compet
     ++comparison.competitors_polished;
     polished_starts.push_back(candidate.pose);
     Hypothesis settled_candidate = settling.polish(candidate);
+    // A polish that ended in the best's basin but not at the best may only
+    // have stopped short (its radii shrink on the way from a far start):
+    // once more from where it ended before the basin is called flat.
+    if (settling.same(comparison.best.pose, settled_candidate.pose) &&
+        !settling.agree(comparison.best.pose, settled_candidate.pose))
+      settled_candidate = settling.polish(settled_candidate);
     if (settling.same(comparison.best.pose, settled_candidate.pose))
     {
       // The same basin: the same answer, unless its floor is so flat that
