@@ -65,8 +65,10 @@ constexpr std::size_t kFitScanPoints = 300;
 // The polished pose is kept unless its combined score drops by more.
 constexpr double kMaxScoreDropByPolish = 0.03;
 // Competitors within the confidence margin polished to see where they settle,
-// at most (each costs about one polish).
-constexpr int kMaxSettledCompetitors = 3;
+// at most (each costs about one polish). A long face seen from an oblique
+// angle gives slides of one pose along it as competitors, on both sides of
+// the best (view 68 of the bench: -49, -20, 15 and 35 mm).
+constexpr int kMaxSettledCompetitors = 4;
 // A seen face moves the pose along its normal (snappedToSeenFaces) when this
 // many scan points lie on it with normals within kSnapNormalDeg of its own,
 // by at most kMaxSnapM (further is no polish residue but another pose).
