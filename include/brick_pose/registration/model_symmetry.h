@@ -31,8 +31,6 @@ struct ModelSymmetries
   Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
   Eigen::Vector3d half_extents_m = Eigen::Vector3d::Zero();
 
-  /// The eight corners of that box (model frame); empty unless box_like.
-  std::vector<Eigen::Vector3d> corners() const;
   /// Motions of the model frame mapping the model onto itself; identity first.
   std::vector<Eigen::Isometry3d> symmetries{Eigen::Isometry3d::Identity()};
   /// One motion per class of the remaining axis-aligned rotations about the

@@ -67,19 +67,6 @@ double rotationAngleDeg(const Eigen::Matrix3d& rotation)
 }
 }  // namespace
 
-std::vector<Eigen::Vector3d> ModelSymmetries::corners() const
-{
-  std::vector<Eigen::Vector3d> result;
-  if (!box_like)
-    return result;
-  for (int signs = 0; signs < 8; ++signs)
-  {
-    const Eigen::Vector3d sign((signs & 1) ? -1.0 : 1.0, (signs & 2) ? -1.0 : 1.0, (signs & 4) ? -1.0 : 1.0);
-    result.push_back(centre_m + axes * sign.cwiseProduct(half_extents_m));
-  }
-  return result;
-}
-
 ModelSymmetries findModelSymmetries(const PointSet& model, const PointGrid& model_grid, const PointSet& probe,
                                     double match_radius_m, double max_normal_difference_deg,
                                     double min_self_overlap)

@@ -12,7 +12,9 @@
 #include "brick_pose/common/angles.h"
 #include "brick_pose/common/number_text.h"
 #include "brick_pose/common/statistics.h"
+#include "brick_pose/registration/box_placement.h"
 #include "brick_pose/registration/box_view_checks.h"
+#include "brick_pose/registration/competitor_settling.h"
 #include "brick_pose/registration/congruent_set_finder.h"
 #include "brick_pose/registration/coplanar_base.h"
 #include "brick_pose/registration/icp_polish.h"
@@ -24,6 +26,7 @@
 #include "brick_pose/registration/strided_deadline.h"
 #include "brick_pose/registration/uniform_sampling.h"
 #include "brick_pose/registration/view_consistency.h"
+#include "brick_pose/registration/visible_surface.h"
 
 namespace brick_pose
 {
@@ -62,8 +65,10 @@ constexpr std::size_t kFitScanPoints = 300;
 // The polished pose is kept unless its combined score drops by more.
 constexpr double kMaxScoreDropByPolish = 0.03;
 // Competitors within the confidence margin polished to see where they settle,
-// at most (each costs about one polish).
-constexpr int kMaxSettledCompetitors = 3;
+// at most (each costs about one polish). A long face seen from an oblique
+// angle gives slides of one pose along it as competitors, on both sides of
+// the best (view 68 of the bench: -49, -20, 15 and 35 mm).
+constexpr int kMaxSettledCompetitors = 4;
 // A seen face moves the pose along its normal (snappedToSeenFaces) when this
 // many scan points lie on it with normals within kSnapNormalDeg of its own,
 // by at most kMaxSnapM (further is no polish residue but another pose).
@@ -80,6 +85,9 @@ constexpr double kSettledAgreementM = 0.006;
 constexpr double kPolishVisibleCos = 0.2;
 constexpr double kPolishReachPerPairTolerance = 2.5;
 constexpr int kClockStride = 32;
+// Scan points left out at each end of the scan's extent when an alternative
+// orientation is placed on it (stray points that passed the normal checks).
+constexpr int kExtentTrimPoints = 3;
 
 // Scores and fractions in reasons read to three digits.
 std::string formatScore(double value) { return numberText(value, 3); }
@@ -92,20 +100,14 @@ struct ViewInput
   PointSet model_probe;  ///< model-side checks, symmetry probe
   PointSet scan;  ///< dense scan sample, normals towards the viewpoint
   std::vector<int> trusted;  ///< scan points whose normals are trusted
+  std::vector<Eigen::Vector3d> trusted_points;  ///< their positions
   PointSet base_cloud;  ///< trusted scan points the bases are drawn from
   double match_radius_m = 0.0;
   double pair_tolerance_m = 0.0;
   double scan_diameter_m = 0.0;
   double model_diameter_m = 0.0;
+  double model_spacing_m = 0.0;  ///< median nearest-neighbour spacing of `model`
   bool bases_span_faces = false;
-};
-
-struct Hypothesis
-{
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< model -> target
-  double target_coverage = 0.0;  ///< the search's quick score
-  ViewScore view;
-  bool view_evaluated = false;
 };
 
 PointSet withUnitNormals(PointSet cloud)
@@ -187,12 +189,14 @@ ViewInput prepareInput(const PointSet& source, const PointSet& target, const Sup
   input.scan.normals = normals.normals;
   input.trusted = trustedScanPoints(input.scan, normals.surface_variation, view);
   const PointSet trusted_scan = input.scan.subset(input.trusted);
+  input.trusted_points = trusted_scan.points;
   input.base_cloud = trusted_scan.subset(uniformSubsample(trusted_scan.points, params.sample_size, rng));
   input.bases_span_faces = showsSeveralFaces(input.base_cloud.normals);
 
   // The model sample as dense as the base cloud: a base point's counterpart
   // is then as close in the model sample as a face registration's would be.
-  const double model_spacing_m = neighbourSpacing(input.model.points, 0.5, rng);
+  input.model_spacing_m = neighbourSpacing(input.model.points, 0.5, rng);
+  const double model_spacing_m = input.model_spacing_m;
   const double base_spacing_m = neighbourSpacing(input.base_cloud.points, 0.5, rng);
   const double density_ratio = base_spacing_m > 0.0 ? model_spacing_m / base_spacing_m : 1.0;
   // Clamped as a double: a degenerate scan (all points within a few microns)
@@ -368,12 +372,41 @@ Hypothesis fitAndScore(const Eigen::Isometry3d& pose, const FitContext& context,
   return hypothesis;
 }
 
+/// The pose turned into each other axis-aligned orientation of the model's
+/// box (one per class modulo its true symmetries) and placed on the scan as
+/// the camera sees a box (box_placement.h).
+std::vector<Eigen::Isometry3d> placedAlternatives(const Eigen::Isometry3d& pose, const ViewInput& input,
+                                                  const ModelSymmetries& symmetries, const Eigen::Vector3d& viewpoint_m)
+{
+  std::vector<Eigen::Isometry3d> placed;
+  for (const Eigen::Isometry3d& alternative : symmetries.alternatives)
+    placed.push_back(anchoredToScanExtent(pose * alternative, symmetries, input.trusted_points, viewpoint_m,
+                                          kExtentTrimPoints));
+  return placed;
+}
+
+/// The first of the placed alternatives of `leader` that passes the view
+/// acceptance once fitted, if any.
+std::optional<Hypothesis> acceptedAlternative(const Hypothesis& leader, const ViewInput& input,
+                                              const ViewConsistency& consistency, const ModelSymmetries& symmetries,
+                                              const FitContext& fit_context, const Super4PCSParams& params)
+{
+  for (const Eigen::Isometry3d& alternative : placedAlternatives(leader.pose, input, symmetries, params.view.viewpoint_m))
+  {
+    const Hypothesis fitted = fitAndScore(alternative, fit_context, input, consistency, params);
+    if (passesAcceptance(fitted.view, params.view))
+      return fitted;
+  }
+  return std::nullopt;
+}
+
 /// Draws bases from the scan and verifies their congruent sets in the model
 /// until a pose passes the view acceptance with a high scan coverage, or the
 /// work or time budget is spent.
 std::string searchHypotheses(const ViewInput& input, const ViewConsistency& consistency, const FitContext& fit_context,
-                             const Super4PCSParams& params, SteadyClock::time_point start, std::mt19937_64& rng,
-                             HypothesisList& hypotheses, RegistrationResult& result)
+                             const ModelSymmetries& symmetries, const Super4PCSParams& params,
+                             SteadyClock::time_point start, std::mt19937_64& rng, HypothesisList& hypotheses,
+                             RegistrationResult& result)
 {
   const ShellPairIndex pair_index(input.model_sample.points, input.pair_tolerance_m);
   const CongruentSetFinder finder(input.model_sample, pair_index);
@@ -385,6 +418,7 @@ std::string searchHypotheses(const ViewInput& input, const ViewConsistency& cons
   const ViewRegistrationParams& view = params.view;
 
   std::string stop_reason;
+  bool alternatives_tried = false;
   int base_draw_failures = 0;
   std::vector<Eigen::Vector3d> base_points(4);
   std::vector<Eigen::Vector3d> set_points(4);
@@ -453,54 +487,40 @@ std::string searchHypotheses(const ViewInput& input, const ViewConsistency& cons
         stop_reason = "a pose passed the view checks";
         return false;
       }
-      return true;
+      // A leader that covers the scan but fails the view checks is most
+      // often the right surface in the wrong orientation (a brick's end face
+      // matched as part of a side, which the search can match anywhere along
+      // the side, using up its budget): its other orientations, placed on
+      // the scan, are tried once, as the final comparison would.
+      if (alternatives_tried || !symmetries.box_like)
+        return true;
+      alternatives_tried = true;
+      const std::optional<Hypothesis> accepted =
+          acceptedAlternative(hypothesis, input, consistency, symmetries, fit_context, params);
+      if (!accepted)
+        return true;
+      const int index = hypotheses.offer(accepted->pose, accepted->target_coverage);
+      if (index >= 0)
+        hypotheses.at(index) = *accepted;
+      stop_reason = "another orientation of the box passed the view checks";
+      return false;
     });
   }
   return stop_reason;
 }
 
-/// The hypothesis moved so that its model corner nearest the viewpoint lands
-/// where `reference` puts its own nearest corner: the corner a view of a box
-/// shows best, whatever the box's dimensions.
-Eigen::Isometry3d anchoredAtNearCorner(const Eigen::Isometry3d& pose, const Eigen::Isometry3d& reference,
-                                       const ModelSymmetries& symmetries, const Eigen::Vector3d& viewpoint)
-{
-  auto nearest = [&](const Eigen::Isometry3d& p) {
-    Eigen::Vector3d best = Eigen::Vector3d::Zero();
-    double best_distance = std::numeric_limits<double>::infinity();
-    for (const Eigen::Vector3d& corner : symmetries.corners())
-    {
-      const Eigen::Vector3d placed = p * corner;
-      const double distance = (placed - viewpoint).norm();
-      if (distance < best_distance)
-      {
-        best_distance = distance;
-        best = placed;
-      }
-    }
-    return best;
-  };
-  Eigen::Isometry3d moved = pose;
-  moved.translation() += nearest(reference) - nearest(pose);
-  return moved;
-}
-
-/// The polish of the face mode with the model's faces turned towards the
-/// viewpoint as the source.
+/// The polish of the face mode with the model's surface turned towards the
+/// viewpoint (visible_surface.h) as the source.
 Eigen::Isometry3d polishOnVisibleFaces(const ViewInput& input, const Eigen::Isometry3d& pose,
-                                       const Super4PCSParams& params, SteadyClock::time_point start,
-                                       std::mt19937_64& rng)
+                                       const ModelSymmetries& symmetries, const Super4PCSParams& params,
+                                       SteadyClock::time_point start, std::mt19937_64& rng)
 {
-  std::vector<int> facing;
-  for (std::size_t i = 0; i < input.model.size(); ++i)
-  {
-    const Eigen::Vector3d p = pose * input.model.points[i];
-    if ((pose.linear() * input.model.normals[i]).dot((params.view.viewpoint_m - p).normalized()) >= kPolishVisibleCos)
-      facing.push_back(static_cast<int>(i));
-  }
-  if (facing.size() < 4)
+  // Half a model spacing takes in a face's edge points and none of the
+  // neighbouring face's inner ones.
+  const PointSet visible = visibleModelSurface(input.model, pose, symmetries, params.view.viewpoint_m,
+                                               0.5 * input.model_spacing_m, kPolishVisibleCos);
+  if (visible.size() < 4)
     return pose;
-  const PointSet visible = input.model.subset(facing);
   // The scan without what faces away from the viewpoint (grazing strips and
   // flying-pixel curtains, which the polish's trimming does not always keep
   // out); edges stay, the boundary stage needs them.
@@ -573,91 +593,44 @@ Eigen::Isometry3d snappedToSeenFaces(const Eigen::Isometry3d& pose, const ViewIn
 }
 
 /// The polished pose and its score, or the pose as it was when the polish
-/// lost more than kMaxScoreDropByPolish of its score.
+/// left the hypothesis and lost more than kMaxScoreDropByPolish of its score
+/// (polishKept).
 Hypothesis polished(const Hypothesis& hypothesis, const ViewInput& input, const ViewConsistency& consistency,
                     const ModelSymmetries& symmetries, const Super4PCSParams& params, SteadyClock::time_point start, std::mt19937_64& rng)
 {
   if (params.refine_iterations <= 0)
     return hypothesis;
   Hypothesis result = hypothesis;
-  result.pose = snappedToSeenFaces(polishOnVisibleFaces(input, hypothesis.pose, params, start, rng), input, symmetries);
+  result.pose = snappedToSeenFaces(polishOnVisibleFaces(input, hypothesis.pose, symmetries, params, start, rng), input, symmetries);
   result.view = consistency.evaluate(result.pose);
   result.view_evaluated = true;
-  if (result.view.combined() < hypothesis.view.combined() - kMaxScoreDropByPolish)
+  auto same = [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+    return samePoseModuloSymmetry(a, b, symmetries, kSameHypothesisDeg, kSameHypothesisOffsetM);
+  };
+  if (!polishKept(hypothesis, result, same, kMaxScoreDropByPolish))
     return hypothesis;
   return result;
 }
 
-struct Comparison
-{
-  Hypothesis best;
-  double second_best = 0.0;  ///< combined score of the best distinct pose
-  /// A competitor settled on the best pose only within kSameHypothesisOffsetM,
-  /// not within kSettledAgreementM: the view does not fix the position to
-  /// the accuracy claimed.
-  bool loosely_settled = false;
-};
-
-/// The best of the fitted hypotheses (`scored`, best first), polished, and the
-/// score of its strongest distinct competitor. Coverage scores change slowly
-/// when a pose slides along a long face (by offset / length), so a pose a
-/// few centimetres along from the best one scores nearly as well without
-/// being another answer: it lies in the same basin. A competitor within the
-/// confidence margin is therefore polished too (the boundary stage sees the
-/// ends of faces); when it settles on the best pose it is the same answer,
-/// when it settles elsewhere with a close score the view is ambiguous, and
-/// when it settles elsewhere with a better score it becomes the best.
-Comparison settleCompetitors(const std::vector<Hypothesis>& scored, const ViewInput& input,
+/// The best hypothesis polished against its competitors (competitor_settling.h).
+Comparison compareHypotheses(const std::vector<Hypothesis>& scored, const ViewInput& input,
                              const ViewConsistency& consistency, const ModelSymmetries& symmetries,
                              const Super4PCSParams& params, SteadyClock::time_point start, std::mt19937_64& rng)
 {
-  auto same = [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  CompetitorSettling settling;
+  if (params.refine_iterations > 0)
+    settling.polish = [&](const Hypothesis& hypothesis) {
+      return polished(hypothesis, input, consistency, symmetries, params, start, rng);
+    };
+  settling.same = [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
     return samePoseModuloSymmetry(a, b, symmetries, kSameHypothesisDeg, kSameHypothesisOffsetM);
   };
-  Comparison comparison;
-  comparison.best = polished(scored.front(), input, consistency, symmetries, params, start, rng);
-  // Poses settled so far other than the best, with their scores.
-  std::vector<Hypothesis> settled;
-  int polishes = 0;
-  for (std::size_t i = 1; i < scored.size(); ++i)
-  {
-    const Hypothesis& candidate = scored[i];
-    if (same(scored.front().pose, candidate.pose) || same(comparison.best.pose, candidate.pose))
-      continue;
-    bool known = false;
-    for (const Hypothesis& other : settled)
-      known = known || same(other.pose, candidate.pose);
-    if (known)
-      continue;
-    const bool close = candidate.view.combined() >= comparison.best.view.combined() - params.view.min_confidence;
-    if (!close || polishes >= kMaxSettledCompetitors || params.refine_iterations <= 0)
-    {
-      // Not settled: it counts with its fitted score (a competitor too far
-      // below to matter, or one the budget of polishes leaves as it is).
-      comparison.second_best = std::max(comparison.second_best, candidate.view.combined());
-      if (!close)
-        break;  // sorted: no later one is close either
-      continue;
-    }
-    ++polishes;
-    Hypothesis settled_candidate = polished(candidate, input, consistency, symmetries, params, start, rng);
-    if (same(comparison.best.pose, settled_candidate.pose))
-    {
-      // The same basin: the same answer, unless its floor is so flat that
-      // polishes from nearby starts end a good part of the tolerance apart.
-      comparison.loosely_settled =
-          comparison.loosely_settled || !samePoseModuloSymmetry(comparison.best.pose, settled_candidate.pose, symmetries,
-                                                                kSameHypothesisDeg, kSettledAgreementM);
-      continue;
-    }
-    if (settled_candidate.view.combined() > comparison.best.view.combined())
-      std::swap(settled_candidate, comparison.best);
-    settled.push_back(settled_candidate);
-  }
-  for (const Hypothesis& other : settled)
-    if (!same(comparison.best.pose, other.pose))
-      comparison.second_best = std::max(comparison.second_best, other.view.combined());
-  return comparison;
+  settling.agree = [&](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+    return samePoseModuloSymmetry(a, b, symmetries, kSameHypothesisDeg, kSettledAgreementM);
+  };
+  settling.min_confidence = params.view.min_confidence;
+  settling.max_polishes = kMaxSettledCompetitors;
+  return settleCompetitors(scored, settling);
 }
 }  // namespace
 
@@ -714,7 +687,7 @@ RegistrationResult alignWholeView(const PointSet& source, const PointSet& target
   const double search_cpu_start_s = threadCpuSeconds();
   HypothesisList hypotheses(view.kept_hypotheses, symmetries, kSameHypothesisOffsetM);
   const FitContext fit_context(input, kHypothesisFitRadiusPerMatchRadius * input.match_radius_m);
-  result.reason = searchHypotheses(input, consistency, fit_context, params, start, rng, hypotheses, result);
+  result.reason = searchHypotheses(input, consistency, fit_context, symmetries, params, start, rng, hypotheses, result);
   result.search_cpu_s = threadCpuSeconds() - search_cpu_start_s;
   if (hypotheses.all().empty())
   {
@@ -725,8 +698,8 @@ RegistrationResult alignWholeView(const PointSet& source, const PointSet& target
 
   const double refine_cpu_start_s = threadCpuSeconds();
   // Every hypothesis of the search, and every near-symmetric alternative of
-  // the best (centred as the best, and moved to its near corner), fitted and
-  // scored alike.
+  // the best (centred as the best, and placed on the scan as the camera sees
+  // a box: box_placement.h), fitted and scored alike.
   std::vector<Hypothesis> scored;
   for (const Hypothesis& hypothesis : hypotheses.all())
     scored.push_back(fitAndScore(hypothesis.pose, fit_context, input, consistency, params));
@@ -735,11 +708,9 @@ RegistrationResult alignWholeView(const PointSet& source, const PointSet& target
   const Eigen::Isometry3d leader = scored.front().pose;
   std::vector<Eigen::Isometry3d> alternatives = slidAlternatives(leader, input, symmetries);
   for (const Eigen::Isometry3d& alternative : symmetries.alternatives)
-  {
-    const Eigen::Isometry3d turned = leader * alternative;
-    alternatives.push_back(turned);
-    alternatives.push_back(anchoredAtNearCorner(turned, leader, symmetries, view.viewpoint_m));
-  }
+    alternatives.push_back(leader * alternative);
+  for (const Eigen::Isometry3d& placed : placedAlternatives(leader, input, symmetries, view.viewpoint_m))
+    alternatives.push_back(placed);
   for (const Eigen::Isometry3d& alternative : alternatives)
     scored.push_back(fitAndScore(alternative, fit_context, input, consistency, params));
   // The alternatives' own slides: a near-symmetric pose of a box whose
@@ -748,7 +719,7 @@ RegistrationResult alignWholeView(const PointSet& source, const PointSet& target
   for (const Eigen::Isometry3d& alternative : slidAlternatives(scored.front().pose, input, symmetries))
     scored.push_back(fitAndScore(alternative, fit_context, input, consistency, params));
   std::stable_sort(scored.begin(), scored.end(), by_score);
-  const Comparison comparison = settleCompetitors(scored, input, consistency, symmetries, params, start, rng);
+  const Comparison comparison = compareHypotheses(scored, input, consistency, symmetries, params, start, rng);
   const Hypothesis& best = comparison.best;
   const double second_best = comparison.second_best;
   result.refine_cpu_s = threadCpuSeconds() - refine_cpu_start_s;
