@@ -121,6 +121,27 @@ TEST(EdgeEvidence, AnOccluderOverPartOfTheEdgeMakesItAnOcclusion)
   EXPECT_EQ(classify(frame), EdgeKind::kOcclusion);
 }
 
+// The edge's profiles leave out its ends (corners are rounded and mixed), so
+// a brick lying across only the face's corner is judged there on its own.
+TEST(EdgeEvidence, AnOccluderOverOnlyACornerIsSeenAtTheEdgeEnd)
+{
+  const auto depth = [](bool occluder) {
+    return [occluder](int u, int v) {
+      if (u < kEdgeU) return kFaceDepthM;
+      return occluder && v < 40 ? kFaceDepthM - 0.15 : kFaceDepthM + 0.2;  // the edge starts at v 30
+    };
+  };
+  const auto endsOf = [](const RgbdFrame& frame) {
+    return occlusionAtEdgeEnds(frame, facePlane(), Eigen::Vector2d(kEdgeU, 30.0), Eigen::Vector2d(kEdgeU, 210.0),
+                               Eigen::Vector2d(1.0, 0.0));
+  };
+  const RgbdFrame covered = makeFrame(depth(true), plainGrey);
+  EXPECT_EQ(classify(covered), EdgeKind::kStepDown) << "the edge's own profiles do not reach the corner";
+  EXPECT_EQ(endsOf(covered), EdgeKind::kOcclusion);
+  const RgbdFrame clear = makeFrame(depth(false), plainGrey);
+  EXPECT_EQ(endsOf(clear), EdgeKind::kUnknown);
+}
+
 TEST(EdgeEvidence, PlaneContinuingBeyondTheEdgeIsAMaskEdge)
 {
   // The plane goes on with the same colour: the edge of a colour mask or a

@@ -315,5 +315,47 @@ TEST(TopFaceCheck, AFaceWithACornerJustPastTheImageBorderIsNotComplete)
   ASSERT_EQ(inside_result.candidates.size(), 1u);
   EXPECT_TRUE(inside_result.candidates[0].complete) << inside_result.candidates[0].partial_reason;
 }
+
+/// The red brick under test and a green brick held above it whose corner
+/// reaches `overlap_m` over the red top's corner (negative: that far clear).
+sim::Scene redWithGreenOverItsCorner(double overlap_m)
+{
+  const double green_x = 0.15 - overlap_m + 0.3, green_y = 0.1 - overlap_m + 0.1;
+  return scene({{"red", {0.0, 0.0, 0.2}, 0.0}, {"green", {green_x, green_y, 0.45}, 0.0}}, 89.0);
+}
+
+const BrickCandidate* candidateOfType(const FrontEndResult& result, const std::string& type)
+{
+  for (const BrickCandidate& candidate : result.candidates)
+    if (candidate.type_name == type) return &candidate;
+  return nullptr;
+}
+
+TEST(TopFaceCheck, ABrickOverOnlyTheCornerOfATopMakesItPartial)
+{
+  FrontEndParams params;
+  params.mode = SegmentationMode::kHsv;
+  const FrontEnd front_end(BrickCatalogue::mbzirc2020(), params);
+
+  // The green covers a corner of the red top a little over a centimetre
+  // square: the quad still has the red's size and the edges' profiles,
+  // which stay clear of the corners, see steps down.
+  const Rendered covered = render(redWithGreenOverItsCorner(0.012));
+  ASSERT_FALSE(covered.synthetic.truth[0].top_face_complete);
+  ASSERT_GT(covered.synthetic.truth[0].visible_fraction, 0.97);
+  const FrontEndResult covered_result = front_end.process(covered.frame);
+  const BrickCandidate* red = candidateOfType(covered_result, "red");
+  ASSERT_NE(red, nullptr);
+  EXPECT_FALSE(red->complete) << red->partial_reason;
+  EXPECT_NE(red->partial_reason.find("occlusion"), std::string::npos) << red->partial_reason;
+
+  // Held 3 cm clear of the corner, the red top is whole.
+  const Rendered clear = render(redWithGreenOverItsCorner(-0.03));
+  ASSERT_TRUE(clear.synthetic.truth[0].top_face_complete);
+  const FrontEndResult clear_result = front_end.process(clear.frame);
+  red = candidateOfType(clear_result, "red");
+  ASSERT_NE(red, nullptr);
+  EXPECT_TRUE(red->complete) << red->partial_reason;
+}
 }  // namespace
 }  // namespace brick_pose

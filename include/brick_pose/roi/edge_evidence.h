@@ -113,6 +113,14 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
                           const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
                           const EdgeEvidenceParams& params = EdgeEvidenceParams());
 
+/// The ends of the same edge, which classifyEdge() leaves out (the
+/// end_margin_fraction next to each corner), judged the same way: kOcclusion
+/// when a nearer surface reaches over either end, else kUnknown. Something
+/// lying across a face's corner hides it from the edges' own profiles.
+EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
+                             const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
+                             const EdgeEvidenceParams& params = EdgeEvidenceParams());
+
 /// Evidence of a seam along a line that crosses a face (both sides on
 /// `plane`): the groove depth and dark-line contrast over the whole line,
 /// and whether they clear the thresholds of `params`. Used to place and

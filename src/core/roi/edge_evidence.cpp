@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "brick_pose/common/errors.h"
@@ -409,6 +410,28 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
     first = false;
   }
   return worst;
+}
+
+EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
+                             const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
+                             const EdgeEvidenceParams& params)
+{
+  const double length_px = (b_px - a_px).norm();
+  if (!(length_px > 1.0) || !(outward_px.norm() > 0.0) || !plane.valid) return EdgeKind::kUnknown;
+  const Eigen::Vector2d outward = outward_px.normalized();
+  const double margin = std::min(0.25, std::max(params.end_margin_fraction, params.probe_px / length_px));
+  const double step_m = std::max(params.min_step_m, params.step_noise_factor * plane.rms_m);
+  const Eigen::Vector2d end_length = margin * (b_px - a_px);
+  const std::array<std::pair<Eigen::Vector2d, Eigen::Vector2d>, 2> ends = {{{a_px, a_px + end_length},
+                                                                            {b_px - end_length, b_px}}};
+  for (const auto& [from, to] : ends)
+  {
+    const Profile profile =
+        sampleProfile(frame, plane, from, to, outward, -params.probe_px, 2 * params.probe_px, params.sample_spacing_px);
+    const FarProbe far{frame, plane, from, to, outward, profile.rows};
+    if (judgeStretch(profile, far, step_m, params).kind == EdgeKind::kOcclusion) return EdgeKind::kOcclusion;
+  }
+  return EdgeKind::kUnknown;
 }
 
 SeamScore scoreSeam(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,

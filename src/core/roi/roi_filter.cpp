@@ -131,6 +131,9 @@ EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate,
     Eigen::Vector2d outward(b.y() - a.y(), a.x() - b.x());
     if (outward.dot(0.5 * (a + b) - candidate.centroid_px) < 0.0) outward = -outward;
     kinds[k] = classifyEdge(frame, candidate.plane, a, b, outward, params).kind;
+    if (isRealEdge(kinds[k], true) &&
+        occlusionAtEdgeEnds(frame, candidate.plane, a, b, outward, params) == EdgeKind::kOcclusion)
+      kinds[k] = EdgeKind::kOcclusion;
   }
   // The profiles stay clear of the corners, so a corner just past the border
   // (a face a few pixels too long for the image) is only seen here.
