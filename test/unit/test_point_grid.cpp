@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <vector>
@@ -63,5 +65,57 @@ TEST(UniformSampling, KeepsTheCountOnACloudSpanningTheAllowedRange)
   {
     EXPECT_GE(index, 0);
     EXPECT_LT(index, static_cast<int>(points.size()));
+  }
+}
+
+namespace
+{
+/// neighbourSpacing's definition, by scanning every point: the quantile of
+/// the distances from `probes` random points (drawn as neighbourSpacing draws
+/// them) to their nearest point at a non-zero distance.
+double spacingByScan(const std::vector<Eigen::Vector3d>& points, double quantile, std::uint64_t seed, int probes)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<std::size_t> pick(0, points.size() - 1);
+  std::vector<double> nearest;
+  for (int k = 0; k < probes; ++k)
+  {
+    const std::size_t i = pick(rng);
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < points.size(); ++j)
+    {
+      const double d = (points[j] - points[i]).norm();
+      if (j != i && d > 0.0)
+        best = std::min(best, d);
+    }
+    if (std::isfinite(best))
+      nearest.push_back(best);
+  }
+  std::sort(nearest.begin(), nearest.end());
+  return nearest[std::min(nearest.size() - 1, static_cast<std::size_t>(quantile * nearest.size()))];
+}
+}  // namespace
+
+// neighbourSpacing looks for neighbours in a grid; probes with none inside
+// its radius (outliers far from the surface) and points with duplicates must
+// still get the same answer as a scan over all points.
+TEST(UniformSampling, NeighbourSpacingEqualsTheFullScanWithOutliersAndDuplicates)
+{
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> sheet(0.0, 0.2);
+  std::uniform_real_distribution<double> far(-1.0, 1.0);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 2000; ++i)
+    points.emplace_back(sheet(rng), sheet(rng), 0.5);
+  for (int i = 0; i < 100; ++i)
+    points.push_back(points[i]);  // duplicates: distance 0 is not a spacing
+  for (int i = 0; i < 250; ++i)
+    points.emplace_back(far(rng), far(rng), 0.5 + far(rng));
+  constexpr int kProbes = 200;
+  for (const double quantile : {0.0, 0.5, 0.95, 1.0})
+  {
+    std::mt19937_64 spacing_rng(11);
+    const double spacing_m = brick_pose::registration::neighbourSpacing(points, quantile, spacing_rng, kProbes);
+    EXPECT_NEAR(spacing_m, spacingByScan(points, quantile, 11, kProbes), 1e-12) << "quantile " << quantile;
   }
 }

@@ -72,11 +72,20 @@ private:
                      const Eigen::Vector3d& base_nq, double tolerance_rad);
     double min_cos[3];
     double max_cos[3];
+    bool inRange(int k, double cosine) const { return cosine >= min_cos[k] && cosine <= max_cos[k]; }
   };
-  bool normalsAgree(int p, int q, const PairNormalRanges& ranges) const;
+  /// Whether the pair's normals agree with the base pair's in the order
+  /// (p, q) and in the order (q, p).
+  struct PairAgreement
+  {
+    bool forward = false;
+    bool reverse = false;
+  };
+  PairAgreement normalsAgree(int p, int q, const PairNormalRanges& ranges) const;
 
   const PointSet& target_;
   const ShellPairIndex& index_;
+  std::vector<Eigen::Vector3d> unit_normals_;
 };
 }  // namespace registration
 }  // namespace brick_pose

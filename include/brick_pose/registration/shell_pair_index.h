@@ -54,6 +54,9 @@ private:
   const std::vector<Eigen::Vector3d>& points_;
   std::vector<int> order_;  // point indices in Morton order
   std::vector<std::uint64_t> codes_;  // Morton code of order_[k]
+  // points_[order_[k]]: the pair tests walk cells in Morton order, and a copy
+  // in that order reads memory in sequence rather than all over the cloud.
+  std::vector<Eigen::Vector3d> sorted_points_;
   std::vector<Node> nodes_;
 };
 

@@ -20,6 +20,10 @@ double angleBetween(const Eigen::Vector3d& u, const Eigen::Vector3d& v)
 CongruentSetFinder::CongruentSetFinder(const PointSet& target, const ShellPairIndex& index)
   : target_(target), index_(index)
 {
+  // Every base tests its shell pairs' normals: normalised once here, not per pair.
+  unit_normals_.reserve(target.normals.size());
+  for (const Eigen::Vector3d& normal : target.normals)
+    unit_normals_.push_back(normal.normalized());
 }
 
 namespace
@@ -55,20 +59,24 @@ CongruentSetFinder::PairNormalRanges::PairNormalRanges(const Eigen::Vector3d& ba
 // Rigid motions keep the angles between the two normals and between each
 // normal and the segment joining the points; the angles are compared through
 // their cosines (|acos(c) - a| <= t  <=>  cos(a + t) <= c <= cos(a - t)).
-bool CongruentSetFinder::normalsAgree(int p, int q, const PairNormalRanges& ranges) const
+// The reverse pair (q, p) has the segment negated exactly, so its cosines are
+// the forward ones with the last two swapped and negated: one set of dot
+// products decides both orders.
+CongruentSetFinder::PairAgreement CongruentSetFinder::normalsAgree(int p, int q, const PairNormalRanges& ranges) const
 {
-  const Eigen::Vector3d np = target_.normals[p].normalized();
-  const Eigen::Vector3d nq = target_.normals[q].normalized();
+  const Eigen::Vector3d& np = unit_normals_[p];
+  const Eigen::Vector3d& nq = unit_normals_[q];
   const Eigen::Vector3d segment = (target_.points[q] - target_.points[p]).normalized();
-  const double cosines[3] = {np.dot(nq), np.dot(segment), nq.dot(segment)};
-  for (int k = 0; k < 3; ++k)
-  {
-    // Round-off puts the dot product of equal unit normals just above 1.
-    const double cosine = std::clamp(cosines[k], -1.0, 1.0);
-    if (!(cosine >= ranges.min_cos[k] && cosine <= ranges.max_cos[k]))
-      return false;
-  }
-  return true;
+  // Round-off puts the dot product of equal unit normals just above 1.
+  const double between = std::clamp(np.dot(nq), -1.0, 1.0);
+  const double p_side = std::clamp(np.dot(segment), -1.0, 1.0);
+  const double q_side = std::clamp(nq.dot(segment), -1.0, 1.0);
+  PairAgreement agreement;
+  if (!ranges.inRange(0, between))
+    return agreement;
+  agreement.forward = ranges.inRange(1, p_side) && ranges.inRange(2, q_side);
+  agreement.reverse = ranges.inRange(1, -q_side) && ranges.inRange(2, -p_side);
+  return agreement;
 }
 
 std::vector<std::pair<int, int>> CongruentSetFinder::orderedPairs(double radius_m, const Eigen::Vector3d& base_p,
@@ -83,9 +91,10 @@ std::vector<std::pair<int, int>> CongruentSetFinder::orderedPairs(double radius_
   for (const auto& [i, j] : index_.pairsInShell(radius_m, tolerances.distance_m))
   {
     // Both orders: the crossing point divides p-q in the ratio t : (1 - t).
-    if (!use_normals || normalsAgree(i, j, forward))
+    const PairAgreement agreement = use_normals ? normalsAgree(i, j, forward) : PairAgreement{true, true};
+    if (agreement.forward)
       ordered.emplace_back(i, j);
-    if (!use_normals || normalsAgree(j, i, forward))
+    if (agreement.reverse)
       ordered.emplace_back(j, i);
   }
   return ordered;

@@ -10,37 +10,6 @@ namespace brick_pose
 {
 namespace registration
 {
-namespace
-{
-constexpr std::int64_t kAxisMask = (std::int64_t(1) << 21) - 1;
-
-/// Fibonacci hashing: the *high* bits of key * 2^64 / phi. The low bits of
-/// the product depend only on the low bits of the key, which hold the z cell
-/// alone, so masking them sent every cell of a level face (one z) to the same
-/// run of slots and made a lookup, hit or miss, walk that whole run.
-std::uint64_t hashKey(std::uint64_t key, int shift) { return (key * 0x9E3779B97F4A7C15ull) >> shift; }
-
-/// Cell index of a scaled coordinate; clamped so that absurd coordinates
-/// cannot overflow the conversion (wrapping cells only cost extra checks).
-std::int64_t cellIndex(double scaled)
-{
-  constexpr double kLimit = 4.0e15;
-  // A NaN query (a degenerate pose applied to a point) matches nothing: any
-  // cell will do, and converting NaN to an integer is undefined.
-  if (std::isnan(scaled))
-    return 0;
-  return static_cast<std::int64_t>(std::floor(std::clamp(scaled, -kLimit, kLimit)));
-}
-}  // namespace
-
-// Coordinates wrap at 2^21 cells per axis; a wrapped collision only adds
-// points that the exact distance test then rejects.
-std::uint64_t PointGrid::packKey(std::int64_t x, std::int64_t y, std::int64_t z)
-{
-  return (static_cast<std::uint64_t>(x & kAxisMask) << 42) | (static_cast<std::uint64_t>(y & kAxisMask) << 21) |
-         static_cast<std::uint64_t>(z & kAxisMask);
-}
-
 PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double max_radius_m)
   : points_(&points), cell_size_m_(2.0 * max_radius_m)
 {
@@ -54,7 +23,8 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double max_radi
   for (std::size_t i = 0; i < points.size(); ++i)
   {
     const Eigen::Vector3d scaled = points[i] * inv_cell_size_;
-    keyed[i] = {packKey(cellIndex(scaled.x()), cellIndex(scaled.y()), cellIndex(scaled.z())),
+    keyed[i] = {packKey(grid_detail::cellIndex(scaled.x()), grid_detail::cellIndex(scaled.y()),
+                        grid_detail::cellIndex(scaled.z())),
                 static_cast<std::uint32_t>(i)};
   }
   std::sort(keyed.begin(), keyed.end());
@@ -81,42 +51,12 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double max_radi
       sorted_indices_[end] = keyed[end].second;
       ++end;
     }
-    std::uint64_t slot = hashKey(keyed[begin].first, hash_shift_) & mask;
+    std::uint64_t slot = grid_detail::hashKey(keyed[begin].first, hash_shift_) & mask;
     while (table_[slot].key != kEmptyKey)
       slot = (slot + 1) & mask;
     table_[slot] = {keyed[begin].first, static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(end)};
     begin = end;
   }
-}
-
-const PointGrid::Slot* PointGrid::findCell(std::uint64_t key) const
-{
-  const std::uint64_t mask = table_.size() - 1;
-  for (std::uint64_t slot = hashKey(key, hash_shift_) & mask;; slot = (slot + 1) & mask)
-  {
-    const Slot& candidate = table_[slot];
-    if (candidate.key == key)
-      return &candidate;
-    if (candidate.key == kEmptyKey)
-      return nullptr;
-  }
-}
-
-void PointGrid::blockAround(const Eigen::Vector3d& query, std::uint64_t keys[8]) const
-{
-  std::int64_t low[3];
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    const double scaled = query[axis] * inv_cell_size_;
-    // The query ball (radius <= half a cell) reaches the lower neighbour only
-    // when the query sits in the lower half of its cell, the upper otherwise.
-    low[axis] = cellIndex(scaled) - (scaled - std::floor(scaled) < 0.5 ? 1 : 0);
-  }
-  int k = 0;
-  for (int dx = 0; dx < 2; ++dx)
-    for (int dy = 0; dy < 2; ++dy)
-      for (int dz = 0; dz < 2; ++dz)
-        keys[k++] = packKey(low[0] + dx, low[1] + dy, low[2] + dz);
 }
 
 int PointGrid::nearestWithin(const Eigen::Vector3d& query, double radius_m) const

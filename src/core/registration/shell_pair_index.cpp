@@ -87,10 +87,12 @@ ShellPairIndex::ShellPairIndex(const std::vector<Eigen::Vector3d>& points, doubl
   std::sort(keyed.begin(), keyed.end());
   order_.resize(keyed.size());
   codes_.resize(keyed.size());
+  sorted_points_.resize(keyed.size());
   for (std::size_t k = 0; k < keyed.size(); ++k)
   {
     codes_[k] = keyed[k].first;
     order_[k] = keyed[k].second;
+    sorted_points_[k] = points[keyed[k].second];
   }
   nodes_.reserve(2 * points.size() / kLeafSize + 16);
   nodes_.emplace_back();
@@ -198,14 +200,12 @@ void ShellPairIndex::testAllPairs(const Node& a, const Node& b, bool same, Shell
 {
   for (int k = a.begin; k < a.end; ++k)
   {
-    const int i = order_[k];
-    const Eigen::Vector3d& p = points_[i];
+    const Eigen::Vector3d& p = sorted_points_[k];
     for (int m = same ? k + 1 : b.begin; m < b.end; ++m)
     {
-      const int j = order_[m];
-      const double d_sq = (points_[j] - p).squaredNorm();
+      const double d_sq = (sorted_points_[m] - p).squaredNorm();
       if (d_sq >= query.inner_sq && d_sq <= query.outer_sq)
-        query.pairs.emplace_back(std::min(i, j), std::max(i, j));
+        query.pairs.emplace_back(std::min(order_[k], order_[m]), std::max(order_[k], order_[m]));
     }
   }
 }

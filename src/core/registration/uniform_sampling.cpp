@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
+
+#include "brick_pose/registration/point_grid.h"
 
 namespace brick_pose
 {
@@ -98,6 +101,50 @@ std::vector<int> uniformSubsample(const std::vector<Eigen::Vector3d>& points, in
   return kept;
 }
 
+namespace
+{
+// Below this many points per probe a scan over all points is cheaper than
+// building a grid.
+constexpr std::size_t kMinPointsPerProbeForGrid = 4;
+// Grid search radius over the spacing of a flat sheet spanning the two largest
+// extents: surfaces folded over faces are denser than that sheet, so almost
+// every probe finds its nearest neighbour inside.
+constexpr double kSearchRadiusPerSheetSpacing = 2.0;
+
+/// Squared distance from points[i] to its nearest point at a non-zero
+/// distance (infinity when there is none), by scanning all points.
+double nearestSqByScan(const std::vector<Eigen::Vector3d>& points, std::size_t i)
+{
+  double best_sq = std::numeric_limits<double>::infinity();
+  for (std::size_t j = 0; j < points.size(); ++j)
+  {
+    const double d_sq = (points[j] - points[i]).squaredNorm();
+    if (j != i && d_sq > 0.0 && d_sq < best_sq)
+      best_sq = d_sq;
+  }
+  return best_sq;
+}
+
+/// The grid search radius for `points`; 0 when no grid should be used.
+double gridSearchRadius(const std::vector<Eigen::Vector3d>& points, int probe_count)
+{
+  if (points.size() < kMinPointsPerProbeForGrid * static_cast<std::size_t>(probe_count))
+    return 0.0;
+  Eigen::Vector3d lower = points.front();
+  Eigen::Vector3d upper = points.front();
+  for (const Eigen::Vector3d& p : points)
+  {
+    lower = lower.cwiseMin(p);
+    upper = upper.cwiseMax(p);
+  }
+  Eigen::Vector3d extent = upper - lower;
+  std::sort(extent.data(), extent.data() + 3);
+  const double radius_m =
+      kSearchRadiusPerSheetSpacing * std::sqrt(extent(2) * extent(1) / static_cast<double>(points.size()));
+  return std::isfinite(radius_m) && radius_m > 0.0 ? radius_m : 0.0;
+}
+}  // namespace
+
 double neighbourSpacing(const std::vector<Eigen::Vector3d>& points, double quantile, std::mt19937_64& rng,
                         int probes)
 {
@@ -106,16 +153,24 @@ double neighbourSpacing(const std::vector<Eigen::Vector3d>& points, double quant
   std::uniform_int_distribution<std::size_t> pick(0, points.size() - 1);
   std::vector<double> nearest;
   const int probe_count = std::min<int>(probes, static_cast<int>(points.size()));
+  // A nearest neighbour found within the radius is the nearest of all (any
+  // nearer point is inside too), so the grid gives the scan's exact answer;
+  // probes with nothing inside fall back to the scan.
+  const double radius_m = gridSearchRadius(points, probe_count);
+  const std::optional<PointGrid> grid =
+      radius_m > 0.0 ? std::optional<PointGrid>(std::in_place, points, radius_m) : std::nullopt;
   for (int k = 0; k < probe_count; ++k)
   {
     const std::size_t i = pick(rng);
     double best_sq = std::numeric_limits<double>::infinity();
-    for (std::size_t j = 0; j < points.size(); ++j)
-    {
-      const double d_sq = (points[j] - points[i]).squaredNorm();
-      if (j != i && d_sq > 0.0 && d_sq < best_sq)
-        best_sq = d_sq;
-    }
+    if (grid)
+      grid->forEachWithin(points[i], radius_m, [&](int j) {
+        const double d_sq = (points[j] - points[i]).squaredNorm();
+        if (static_cast<std::size_t>(j) != i && d_sq > 0.0 && d_sq < best_sq)
+          best_sq = d_sq;
+      });
+    if (!std::isfinite(best_sq))
+      best_sq = nearestSqByScan(points, i);
     if (std::isfinite(best_sq))
       nearest.push_back(std::sqrt(best_sq));
   }
