@@ -315,7 +315,9 @@ TEST(BoundaryIcp, FindsTheEdgesOfAFaceWithTheirOutwardDirections)
       const Eigen::Vector3d expected = on_end && !on_side ? Eigen::Vector3d(p.x() > 0 ? 1 : -1, 0, 0)
                                                           : Eigen::Vector3d(0, p.y() > 0 ? 1 : -1, 0);
       if (on_end != on_side)
+      {
         EXPECT_GT(boundary.outward[k].dot(expected), 0.9) << p.transpose();
+      }
       EXPECT_LT(std::abs(boundary.outward[k].z()), 0.1);
     }
   }

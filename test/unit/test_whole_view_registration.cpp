@@ -150,7 +150,6 @@ TEST(ViewConsistency, RejectsANearSymmetricPoseAndAPoseInFreeSpace)
   // Exact normals of the scan, turned to the camera.
   scan.normals.clear();
   const PointSet surface = buildCuboidSurfaceCloud(brick, 0.005);
-  Super4PCSParams params = viewParams(1);
   std::vector<int> all;
   for (std::size_t i = 0; i < scan.size(); ++i)
   {
