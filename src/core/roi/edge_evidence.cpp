@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <utility>
 #include <vector>
 
 #include "brick_pose/common/errors.h"
@@ -381,33 +380,52 @@ void EdgeEvidenceParams::validate() const
           "must be in [0, probe_px - 3]");
 }
 
+namespace
+{
+/// Fraction of an edge left out at each end: corners are rounded and mixed,
+/// and the neighbouring edges' outsides lie there.
+double endMargin(double length_px, const EdgeEvidenceParams& params)
+{
+  return std::min(0.25, std::max(params.end_margin_fraction, params.probe_px / length_px));
+}
+
+/// The stretch from `from` to `to` of an edge, judged: its profile across
+/// the edge, with the outward band reaching twice as far (a stereo shadow
+/// beyond a step leaves the first pixels without depth).
+EdgeEvidence judgeSpan(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& from,
+                       const Eigen::Vector2d& to, const Eigen::Vector2d& outward, const EdgeEvidenceParams& params)
+{
+  const double step_m = std::max(params.min_step_m, params.step_noise_factor * plane.rms_m);
+  const Profile profile =
+      sampleProfile(frame, plane, from, to, outward, -params.probe_px, 2 * params.probe_px, params.sample_spacing_px);
+  const FarProbe far{frame, plane, from, to, outward, profile.rows};
+  return judgeStretch(profile, far, step_m, params);
+}
+
+bool judgeable(double length_px, const Eigen::Vector2d& outward_px, const PlaneFit& plane)
+{
+  return length_px > 1.0 && outward_px.norm() > 0.0 && plane.valid;
+}
+}  // namespace
+
 EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
                           const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
                           const EdgeEvidenceParams& params)
 {
   EdgeEvidence worst;
   const double length_px = (b_px - a_px).norm();
-  if (!(length_px > 1.0) || !(outward_px.norm() > 0.0) || !plane.valid) return worst;
+  if (!judgeable(length_px, outward_px, plane)) return worst;
   const Eigen::Vector2d outward = outward_px.normalized();
-  // Stay clear of the corners (and of the neighbouring edges' outsides).
-  const double margin = std::min(0.25, std::max(params.end_margin_fraction, params.probe_px / length_px));
+  const double margin = endMargin(length_px, params);
   const Eigen::Vector2d start = a_px + margin * (b_px - a_px), end = b_px - margin * (b_px - a_px);
   // Short edges are examined in fewer stretches, each ~20 px at least.
   const int stretches = std::max(1, std::min(params.stretches, static_cast<int>((1.0 - 2.0 * margin) * length_px / 20.0)));
-  const double step_m = std::max(params.min_step_m, params.step_noise_factor * plane.rms_m);
-  bool first = true;
   for (int k = 0; k < stretches; ++k)
   {
     const Eigen::Vector2d from = start + (static_cast<double>(k) / stretches) * (end - start);
     const Eigen::Vector2d to = start + (static_cast<double>(k + 1) / stretches) * (end - start);
-    // The outward band reaches twice as far: a stereo shadow beyond a step
-    // leaves the first pixels without depth.
-    const Profile profile =
-        sampleProfile(frame, plane, from, to, outward, -params.probe_px, 2 * params.probe_px, params.sample_spacing_px);
-    const FarProbe far{frame, plane, from, to, outward, profile.rows};
-    EdgeEvidence stretch = judgeStretch(profile, far, step_m, params);
-    if (first || badness(stretch.kind) > badness(worst.kind)) worst = stretch;
-    first = false;
+    const EdgeEvidence stretch = judgeSpan(frame, plane, from, to, outward, params);
+    if (k == 0 || badness(stretch.kind) > badness(worst.kind)) worst = stretch;
   }
   return worst;
 }
@@ -417,20 +435,12 @@ EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, cons
                              const EdgeEvidenceParams& params)
 {
   const double length_px = (b_px - a_px).norm();
-  if (!(length_px > 1.0) || !(outward_px.norm() > 0.0) || !plane.valid) return EdgeKind::kUnknown;
+  if (!judgeable(length_px, outward_px, plane)) return EdgeKind::kUnknown;
   const Eigen::Vector2d outward = outward_px.normalized();
-  const double margin = std::min(0.25, std::max(params.end_margin_fraction, params.probe_px / length_px));
-  const double step_m = std::max(params.min_step_m, params.step_noise_factor * plane.rms_m);
-  const Eigen::Vector2d end_length = margin * (b_px - a_px);
-  const std::array<std::pair<Eigen::Vector2d, Eigen::Vector2d>, 2> ends = {{{a_px, a_px + end_length},
-                                                                            {b_px - end_length, b_px}}};
-  for (const auto& [from, to] : ends)
-  {
-    const Profile profile =
-        sampleProfile(frame, plane, from, to, outward, -params.probe_px, 2 * params.probe_px, params.sample_spacing_px);
-    const FarProbe far{frame, plane, from, to, outward, profile.rows};
-    if (judgeStretch(profile, far, step_m, params).kind == EdgeKind::kOcclusion) return EdgeKind::kOcclusion;
-  }
+  const Eigen::Vector2d end_length = endMargin(length_px, params) * (b_px - a_px);
+  if (judgeSpan(frame, plane, a_px, a_px + end_length, outward, params).kind == EdgeKind::kOcclusion ||
+      judgeSpan(frame, plane, b_px - end_length, b_px, outward, params).kind == EdgeKind::kOcclusion)
+    return EdgeKind::kOcclusion;
   return EdgeKind::kUnknown;
 }
 
