@@ -1,7 +1,5 @@
 #include "brick_pose/pipeline/pipeline_config.h"
 
-#include <sstream>
-
 #include "brick_pose/common/errors.h"
 #include "brick_pose/correction/correction_mode.h"
 

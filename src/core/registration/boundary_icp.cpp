@@ -1,7 +1,6 @@
 #include "brick_pose/registration/boundary_icp.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <optional>

@@ -1,7 +1,6 @@
 #include "brick_pose/registration/symmetric_icp.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <optional>
 #include <utility>
