@@ -92,9 +92,19 @@ TEST(CompetitorSettling, APolishWithinTheHypothesisIsKeptDespiteASmallScoreDrop)
 {
   int polishes = 0;
   const CompetitorSettling settling = oneBasin(polishes);
-  EXPECT_TRUE(polishKept(at(0.0119, 0.846), at(0.001, 0.814), settling.same, 0.03));
-  EXPECT_FALSE(polishKept(at(0.0, 0.846), at(0.05, 0.80), settling.same, 0.03));
-  EXPECT_TRUE(polishKept(at(0.0, 0.846), at(0.05, 0.83), settling.same, 0.03));
+  EXPECT_TRUE(polishKept(at(0.0119, 0.846), at(0.001, 0.814), settling.same, 0.03, 0.1));
+  EXPECT_FALSE(polishKept(at(0.0, 0.846), at(0.05, 0.80), settling.same, 0.03, 0.1));
+  EXPECT_TRUE(polishKept(at(0.0, 0.846), at(0.05, 0.83), settling.same, 0.03, 0.1));
+}
+
+// A polish that stays within the hypothesis but loses a quarter of the score
+// went astray (a box pose tilted 6.6 deg): the start is kept.
+TEST(CompetitorSettling, APolishWithinTheHypothesisThatLosesMuchIsRefused)
+{
+  int polishes = 0;
+  const CompetitorSettling settling = oneBasin(polishes);
+  EXPECT_FALSE(polishKept(at(0.0, 0.998), at(0.004, 0.748), settling.same, 0.03, 0.1));
+  EXPECT_TRUE(polishKept(at(0.0, 0.998), at(0.004, 0.93), settling.same, 0.03, 0.1));
 }
 // A competitor's polish from 37 mm that stops 10 mm short of the best has
 // not shown a flat basin: once more from there it reaches the best, and the

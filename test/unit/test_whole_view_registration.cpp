@@ -187,6 +187,49 @@ TEST(ViewConsistency, RejectsANearSymmetricPoseAndAPoseInFreeSpace)
   EXPECT_GT(in_front.free_space_violation, 0.5);
 }
 
+/// A square face 1 m in front of the camera, turned towards it, sampled on a
+/// grid of `spacing_m` starting at `offset_m`.
+PointSet facingSquare(double spacing_m, double offset_m)
+{
+  PointSet face;
+  for (double x = -0.1 + offset_m; x <= 0.1; x += spacing_m)
+    for (double y = -0.1 + offset_m; y <= 0.1; y += spacing_m)
+    {
+      face.points.emplace_back(x, y, 1.0);
+      face.normals.emplace_back(0.0, 0.0, -1.0);
+    }
+  return face;
+}
+
+// An evenly thinned scan leaves gaps of about two spacings between its points:
+// a face seen whole must count as seen although some of its model points have
+// no scan point within the match radius.
+TEST(ViewConsistency, AFaceSeenWholeByAThinnedScanCountsAsSeen)
+{
+  const PointSet model = facingSquare(0.002, 0.001);
+  const PointSet scan = facingSquare(0.01, 0.0);
+  std::vector<int> all(scan.size());
+  for (std::size_t i = 0; i < scan.size(); ++i)
+    all[i] = static_cast<int>(i);
+  ViewConsistencyParams check;
+  check.match_radius_m = 0.0045;
+  const ViewConsistency at_match_radius(model, model, scan, all, check);
+  const ViewScore narrow = at_match_radius.evaluate(Eigen::Isometry3d::Identity());
+  EXPECT_LT(narrow.model_coverage, 0.75);
+  EXPECT_GT(narrow.target_coverage, 0.99);
+
+  check.seen_radius_m = 1.5 * check.match_radius_m;
+  const ViewConsistency at_seen_radius(model, model, scan, all, check);
+  const ViewScore wide = at_seen_radius.evaluate(Eigen::Isometry3d::Identity());
+  EXPECT_GT(wide.model_coverage, 0.9);
+  EXPECT_DOUBLE_EQ(wide.target_coverage, narrow.target_coverage);
+
+  // Moved by a face's width, the face is not seen however wide the radius.
+  Eigen::Isometry3d moved = Eigen::Isometry3d::Identity();
+  moved.translation().x() = 0.25;
+  EXPECT_LT(at_seen_radius.evaluate(moved).model_coverage, 0.01);
+}
+
 TEST(WholeViewRegistration, RecoversCuboidViewsUpToTheirTrueSymmetries)
 {
   for (const BrickType& brick : {brickOf("red"), cardboardBox(), brickOf("green")})

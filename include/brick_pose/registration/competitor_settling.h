@@ -57,16 +57,19 @@ struct CompetitorSettling
 };
 
 /// Whether a polish of `start` that ended at `polished` is kept. Within one
-/// hypothesis (`same`) the polish is the finer judge: coverage scores at the
-/// match radius change by offset / length along a long face and with the
-/// erosion of grazing faces, and a polish that moved the pose by less than the
+/// hypothesis (`same`) the polish is the finer judge and may lose up to
+/// max_score_drop_within of the combined score: coverage scores at the match
+/// radius change by offset / length along a long face and with the erosion
+/// of grazing faces, and a polish that moved the pose by less than the
 /// hypothesis tolerance refined it (view 27 of the whole-view bench: 11.9 ->
-/// 1.0 mm from the truth, at a combined score 0.032 lower). Beyond it, a score
-/// lower by more than max_score_drop means the polish was pulled off by
-/// clutter, and the start is kept.
+/// 1.0 mm from the truth, at a combined score 0.032 lower). A larger loss is
+/// a polish that went astray even inside the tolerance (a box pose tilted
+/// 6.6 deg, 0.25 lower), and one that left the hypothesis may lose at most
+/// max_score_drop (more means it was pulled off by clutter): the start is
+/// kept.
 bool polishKept(const Hypothesis& start, const Hypothesis& polished,
                 const std::function<bool(const Eigen::Isometry3d&, const Eigen::Isometry3d&)>& same,
-                double max_score_drop);
+                double max_score_drop, double max_score_drop_within);
 
 /// The best of the fitted hypotheses (`scored`, best combined score first),
 /// polished, and the score of its strongest distinct competitor. A candidate

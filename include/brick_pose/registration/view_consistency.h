@@ -34,6 +34,12 @@ struct ViewConsistencyParams
   Eigen::Vector3d viewpoint_m = Eigen::Vector3d::Zero();
   /// A scan point and a model point match within this distance.
   double match_radius_m = 0.01;
+  /// A model point counts as seen when a scan point with an agreeing normal
+  /// lies within this distance (0: match_radius_m). It may be wider than the
+  /// match radius: that bounds how far a scan point lies off the surface,
+  /// whereas this must span the gaps of an evenly thinned scan, whose points
+  /// can lie up to about two spacings from a spot of a face that was seen.
+  double seen_radius_m = 0.0;
   /// ... and when their normals differ by at most this.
   double max_normal_difference_deg = 30.0;
   /// A model point counts as seen from the viewpoint when its normal is
@@ -88,6 +94,7 @@ private:
   const PointSet& model_sample_;
   const PointSet& target_;
   ViewConsistencyParams params_;
+  double seen_radius_m_;
   double min_normal_cos_ = 0.0;
   std::vector<int> trusted_;
   std::vector<Eigen::Vector3d> trusted_points_;

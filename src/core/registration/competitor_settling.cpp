@@ -21,9 +21,10 @@ bool repeatsAny(const Eigen::Isometry3d& pose, const std::vector<Eigen::Isometry
 
 bool polishKept(const Hypothesis& start, const Hypothesis& polished,
                 const std::function<bool(const Eigen::Isometry3d&, const Eigen::Isometry3d&)>& same,
-                double max_score_drop)
+                double max_score_drop, double max_score_drop_within)
 {
-  return same(start.pose, polished.pose) || polished.view.combined() >= start.view.combined() - max_score_drop;
+  const double allowed_drop = same(start.pose, polished.pose) ? max_score_drop_within : max_score_drop;
+  return polished.view.combined() >= start.view.combined() - allowed_drop;
 }
 
 Comparison settleCompetitors(const std::vector<Hypothesis>& scored, const CompetitorSettling& settling)

@@ -42,13 +42,14 @@ ViewConsistency::ViewConsistency(const PointSet& model, const PointSet& model_sa
     model_sample_(model_sample),
     target_(target),
     params_(params),
+    seen_radius_m_(std::max(params.match_radius_m, params.seen_radius_m)),
     min_normal_cos_(std::cos(params.max_normal_difference_deg * kDegToRad)),
     trusted_(std::move(trusted)),
     model_grid_(model.points, params.match_radius_m)
 {
   for (int i : trusted_)
     trusted_points_.push_back(target.points[i]);
-  target_grid_ = PointGrid(target.points, params.match_radius_m);
+  target_grid_ = PointGrid(target.points, seen_radius_m_);
   sight_frame_ = sightFrame(trusted_points_, params.viewpoint_m);
   std::vector<double> ranges;
   for (const Eigen::Vector3d& p : trusted_points_)
@@ -127,7 +128,7 @@ double ViewConsistency::modelCoverage(const Eigen::Isometry3d& model_to_target, 
     const Eigen::Vector3d p = model_to_target * model_sample_.points[i];
     const Eigen::Vector3d normal = model_to_target.linear() * model_sample_.normals[i];
     bool matched = false;
-    target_grid_.forEachWithin(p, params_.match_radius_m, [&](int t) {
+    target_grid_.forEachWithin(p, seen_radius_m_, [&](int t) {
       matched = matched || target_.normals[t].dot(normal) >= min_normal_cos_;
     });
     seen += matched ? 1 : 0;
