@@ -18,10 +18,15 @@ namespace brick_pose
 namespace
 {
 /// A colour-free face that smaller catalogue tops cover this well (all but
-/// this share) may be those bricks touching. Not more: a pallet layer's
-/// boxes merged into one of the large size leave 0.105-0.116 with seams seen,
-/// but real single boxes (mOSD) with print at the cuts leave 0.119-0.199.
+/// this share) may be those bricks touching. When seams are seen along
+/// nearly every cut (kMinSeenCutShare) the tiles are bricks and may leave
+/// more untiled: a pallet stack's boxes merged into one of the large size
+/// left 0.105-0.116 with seams along 3 of 3 or 4 cuts, while real single
+/// boxes (mOSD) whose print crosses some cuts leave 0.119-0.225 with seams
+/// along at most 3 of 5.
 constexpr double kMaxUntiledForAlternative = 0.1;
+constexpr double kMaxUntiledWithSeenSeams = 0.15;
+constexpr double kMinSeenCutShare = 0.75;
 
 std::string describe(const std::string& what, double value, const std::string& rule, double limit)
 {
@@ -103,7 +108,11 @@ bool cutsShowSeamTraces(const RgbdFrame& frame, const PlaneFit& plane, const Fac
 bool smallerTopsExplain(const RgbdFrame& frame, const PlaneFit& plane, const FaceTiling& alternative,
                         const EdgeEvidenceParams& params)
 {
-  return alternative.tiles.size() >= 2 && alternative.untiled_fraction <= kMaxUntiledForAlternative &&
+  if (alternative.tiles.size() < 2) return false;
+  const bool seams_along_the_cuts =
+      alternative.cuts > 0 && alternative.seen_cuts >= kMinSeenCutShare * alternative.cuts;
+  if (seams_along_the_cuts && alternative.untiled_fraction <= kMaxUntiledWithSeenSeams) return true;
+  return alternative.untiled_fraction <= kMaxUntiledForAlternative &&
          (alternative.seen_cuts > 0 || cutsShowSeamTraces(frame, plane, alternative, params));
 }
 
