@@ -180,7 +180,8 @@ std::vector<Segment> splitSideBySide(const RgbdFrame& frame, const Segment& segm
     }
   }
   std::vector<Segment> split;
-  for (const cv::Mat& mask : part_masks) split.push_back(segmentFromMask(mask, box, frame.depth_m, segment.type_name));
+  for (const cv::Mat& mask : part_masks)
+    split.push_back(croppedSegmentFromMask(mask, box, frame.depth_m, segment.type_name));
   return split;
 }
 std::vector<Segment> splitAtDepthSteps(const RgbdFrame& frame, const Segment& segment, double max_step_m,
@@ -190,6 +191,11 @@ std::vector<Segment> splitAtDepthSteps(const RgbdFrame& frame, const Segment& se
   const cv::Mat depth = frame.depth_m(box);
   cv::Mat labels(box.size(), CV_32SC1, cv::Scalar(0));
   std::vector<int> areas(1, 0);
+  struct Extent
+  {
+    int x0, y0, x1, y1;  // inclusive, in the box
+  };
+  std::vector<Extent> extents(1);  // of each label
   std::vector<cv::Point> stack;
   const float max_step = static_cast<float>(max_step_m);
   for (int y = 0; y < box.height; ++y)
@@ -198,6 +204,7 @@ std::vector<Segment> splitAtDepthSteps(const RgbdFrame& frame, const Segment& se
       if (!segment.mask.at<std::uint8_t>(y, x) || labels.at<int>(y, x) || std::isnan(depth.at<float>(y, x))) continue;
       const int label = static_cast<int>(areas.size());
       areas.push_back(0);
+      extents.push_back({x, y, x, y});
       labels.at<int>(y, x) = label;
       stack.assign(1, cv::Point(x, y));
       while (!stack.empty())
@@ -205,6 +212,11 @@ std::vector<Segment> splitAtDepthSteps(const RgbdFrame& frame, const Segment& se
         const cv::Point p = stack.back();
         stack.pop_back();
         ++areas[label];
+        Extent& extent = extents[label];
+        extent.x0 = std::min(extent.x0, p.x);
+        extent.x1 = std::max(extent.x1, p.x);
+        extent.y0 = std::min(extent.y0, p.y);
+        extent.y1 = std::max(extent.y1, p.y);
         const float z = depth.at<float>(p);
         const cv::Point neighbours[4] = {{p.x + 1, p.y}, {p.x - 1, p.y}, {p.x, p.y + 1}, {p.x, p.y - 1}};
         for (const cv::Point& q : neighbours)
@@ -225,18 +237,26 @@ std::vector<Segment> splitAtDepthSteps(const RgbdFrame& frame, const Segment& se
   if (kept.size() < 2) return {};
   std::sort(kept.begin(), kept.end(), [&](int a, int b) { return areas[a] > areas[b]; });
 
+  // Each part boxed tightly (scanning only its own box): the plates of a
+  // pile are small parts of the segment that joined them.
   std::vector<Segment> parts;
   const int width = frame.width_px();
   for (const int label : kept)
   {
+    const Extent& extent = extents[label];
+    const cv::Rect own(extent.x0, extent.y0, extent.x1 - extent.x0 + 1, extent.y1 - extent.y0 + 1);
     Segment part;
     part.type_name = segment.type_name;
-    part.bounding_box_px = box;
-    part.mask = labels == label;
+    part.bounding_box_px = own + box.tl();
+    part.mask = labels(own) == label;
     part.area_px = areas[label];
-    for (int y = 0; y < box.height; ++y)
-      for (int x = 0; x < box.width; ++x)
-        if (labels.at<int>(y, x) == label) part.pixel_indices.push_back((y + box.y) * width + x + box.x);
+    part.pixel_indices.reserve(static_cast<std::size_t>(areas[label]));
+    for (int y = own.y; y < own.br().y; ++y)
+    {
+      const int* label_row = labels.ptr<int>(y);
+      for (int x = own.x; x < own.br().x; ++x)
+        if (label_row[x] == label) part.pixel_indices.push_back((y + box.y) * width + x + box.x);
+    }
     parts.push_back(std::move(part));
   }
   return parts;

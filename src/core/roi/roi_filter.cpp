@@ -4,11 +4,13 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
 #include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
+#include "brick_pose/common/rounding.h"
 #include "brick_pose/frame/organized_cloud.h"
 #include "brick_pose/roi/plate_splitter.h"
 #include "brick_pose/roi/type_evidence.h"
@@ -96,7 +98,7 @@ double unsegmentedCoplanarFraction(const RgbdFrame& frame, const BrickCandidate&
 {
   std::vector<cv::Point> polygon;
   for (const Eigen::Vector2d& corner : candidate.corners_px)
-    polygon.emplace_back(static_cast<int>(std::lround(corner.x())), static_cast<int>(std::lround(corner.y())));
+    polygon.emplace_back(roundToInt(corner.x()), roundToInt(corner.y()));
   const cv::Rect image(0, 0, frame.width_px(), frame.height_px());
   const cv::Rect box = cv::boundingRect(polygon) & image;
   if (box.area() == 0 || !candidate.plane.valid) return 0.0;
@@ -104,19 +106,23 @@ double unsegmentedCoplanarFraction(const RgbdFrame& frame, const BrickCandidate&
   for (cv::Point& point : polygon) point -= box.tl();
   cv::fillConvexPoly(quad, polygon, cv::Scalar(255));
   const cv::Rect& segment_box = candidate.bounding_box_px;
+  const bool has_mask = !candidate.mask.empty();
   int quad_px = 0, coplanar_px = 0;
   for (int v = box.y; v < box.br().y; ++v)
+  {
+    const unsigned char* quad_row = quad.ptr<unsigned char>(v - box.y);
+    const bool row_in_segment = has_mask && v >= segment_box.y && v < segment_box.br().y;
+    const unsigned char* mask_row = row_in_segment ? candidate.mask.ptr<unsigned char>(v - segment_box.y) : nullptr;
     for (int u = box.x; u < box.br().x; ++u)
     {
-      if (!quad.at<unsigned char>(v - box.y, u - box.x)) continue;
+      if (!quad_row[u - box.x]) continue;
       ++quad_px;
-      if (segment_box.contains(cv::Point(u, v)) && !candidate.mask.empty() &&
-          candidate.mask.at<unsigned char>(v - segment_box.y, u - segment_box.x))
-        continue;
+      if (mask_row && u >= segment_box.x && u < segment_box.br().x && mask_row[u - segment_box.x]) continue;
       const float z = frame.depthAt(u, v);
       if (!std::isnan(z) && std::abs(candidate.plane.signedDistance(frame.camera.backProject(u, v, z))) < step_m)
         ++coplanar_px;
     }
+  }
   return quad_px > 0 ? static_cast<double>(coplanar_px) / quad_px : 0.0;
 }
 
@@ -320,7 +326,7 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
       if (!smaller.empty())
         if (std::optional<RoiOutcome> tiled =
                 tile(frame, segment, candidate, context, true, cloud_timings, &alternative, &smaller))
-          return *tiled;
+          return std::move(*tiled);
     }
     judgeCompleteness(frame, context, !segment.type_name.empty(), candidate);
     if (candidate.complete && alternative.tiles.size() >= 2 &&
@@ -338,7 +344,8 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
   }
   // Planar and facing up but no single brick: touching bricks merged.
   if (measured)
-    if (std::optional<RoiOutcome> split = splitMerged(frame, segment, candidate, context, cloud_timings)) return *split;
+    if (std::optional<RoiOutcome> split = splitMerged(frame, segment, candidate, context, cloud_timings))
+      return std::move(*split);
   // Plates at two heights joined through an edge without a clean depth jump
   // give one bent "plane": split where the depth steps, then filter (and
   // tile) each part.
