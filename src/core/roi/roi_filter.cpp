@@ -10,6 +10,7 @@
 
 #include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
+#include "brick_pose/common/parallel_for.h"
 #include "brick_pose/common/rounding.h"
 #include "brick_pose/frame/organized_cloud.h"
 #include "brick_pose/roi/plate_splitter.h"
@@ -254,6 +255,7 @@ void RoiFilterParams::validate() const
   check.require(quad.side_search_px >= 0.0, "quad.side_search_px", "must be >= 0");
   check.require(quad.edge_quantile >= 0.0 && quad.edge_quantile <= 1.0, "quad.edge_quantile", "must be in [0, 1]");
   check.require(quad.min_side_points >= 2, "quad.min_side_points", "must be >= 2");
+  check.require(worker_threads >= 1, "worker_threads", "must be >= 1");
   edges.validate();
   tiling.validate();
   sides.validate();
@@ -443,27 +445,35 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   // boxes; only a gap between two of them dents the depth): a cut made from
   // sizes alone would also make up the type of the bricks it separates.
   if ((seams_required || typed_by_size) && (tiling.cuts == 0 || tiling.grooved_cuts < tiling.cuts)) return std::nullopt;
-  RoiOutcome outcome;
-  for (FaceTile& tile : tiling.tiles)
-  {
+  // Each tile in its own slots, whichever thread measures it; gathered in
+  // the tiling's order.
+  const int tile_count = static_cast<int>(tiling.tiles.size());
+  std::vector<BrickCandidate> candidates(tiling.tiles.size());
+  std::vector<std::optional<std::string>> reasons(tiling.tiles.size());
+  std::vector<CloudProcessingTimings> tile_timings(tiling.tiles.size());
+  parallelFor(tile_count, params_.worker_threads, [&](int k) {
     // The tiling chose the brick's size: check the part against that type.
-    Segment& part = tile.segment;
-    part.type_name = tile.type_name;
-    BrickCandidate candidate;
-    std::optional<std::string> reason = measure(frame, part, context, cloud_timings, candidate);
+    Segment& part = tiling.tiles[k].segment;
+    part.type_name = tiling.tiles[k].type_name;
+    BrickCandidate& candidate = candidates[k];
+    std::optional<std::string>& reason = reasons[k];
+    reason = measure(frame, part, context, &tile_timings[k], candidate);
     if (!reason) reason = assignType(frame, context, part, candidate);
     // Without colour, a brick cut off by the border or an occluder could be
     // any longer type: its size does not tell.
     if (!reason && typed_by_size && anyTruncated(candidate))
       reason = "face is cut by an occluder or the image border (" + truncation(candidate) +
                "): its size cannot tell its type";
-    if (reason)
-    {
-      outcome.rejections.push_back("part of a split segment: " + *reason);
-      continue;
-    }
-    judgeCompleteness(frame, context, !typed_by_size, candidate);
-    outcome.candidates.push_back(std::move(candidate));
+    if (!reason) judgeCompleteness(frame, context, !typed_by_size, candidate);
+  });
+  RoiOutcome outcome;
+  for (int k = 0; k < tile_count; ++k)
+  {
+    if (cloud_timings) *cloud_timings += tile_timings[k];
+    if (reasons[k])
+      outcome.rejections.push_back("part of a split segment: " + *reasons[k]);
+    else
+      outcome.candidates.push_back(std::move(candidates[k]));
   }
   if (tiling.untiled_fraction > 0.2)
     outcome.rejections.push_back(describe("part of a split segment: a share of", tiling.untiled_fraction,

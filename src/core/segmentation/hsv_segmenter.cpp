@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "brick_pose/common/errors.h"
+#include "brick_pose/common/parallel_for.h"
 
 namespace brick_pose
 {
@@ -17,6 +18,7 @@ void HsvSegmenterParams::validate() const
   if (close_kernel_px < 0) throw ConfigError("hsv segmenter: close_kernel_px must be >= 0");
   if (coarse_factor < 1) throw ConfigError("hsv segmenter: coarse_factor must be >= 1");
   if (!(depth_jump_m >= 0.0)) throw ConfigError("hsv segmenter: depth_jump_m must be >= 0");
+  if (worker_threads < 1) throw ConfigError("hsv segmenter: worker_threads must be >= 1");
 }
 
 HsvSegmenter::HsvSegmenter(const HsvSegmenterParams& params) : params_(params) { params_.validate(); }
@@ -192,12 +194,14 @@ std::vector<Segment> HsvSegmenter::segment(const RgbdFrame& frame, const BrickCa
     coarse_rgb = frame.rgb;
   cv::cvtColor(coarse_rgb, coarse_hsv, cv::COLOR_RGB2HSV);
 
-  std::vector<Segment> segments;
+  // A type with no plate colour (a plain box) is for colour-free segmentation.
+  std::vector<const BrickType*> coloured;
   for (const BrickType& type : catalogue.types())
-  {
-    // A type with no plate colour (a plain box) is for colour-free segmentation.
-    if (!type.hasPlateColour()) continue;
-    std::vector<Segment> found;
+    if (type.hasPlateColour()) coloured.push_back(&type);
+  // Each type's segments in its own slot, joined in catalogue order.
+  std::vector<std::vector<Segment>> found(coloured.size());
+  parallelFor(static_cast<int>(coloured.size()), params_.worker_threads, [&](int t) {
+    const BrickType& type = *coloured[t];
     for (const cv::Rect& box : coarseBoxes(coarse_hsv, *type.plate_hsv, image_size))
     {
       cv::Mat hsv;
@@ -206,11 +210,12 @@ std::vector<Segment> HsvSegmenter::segment(const RgbdFrame& frame, const BrickCa
       cleanMask(mask);
       cutAtDepthJumps(mask, frame.depth_m(box));
       std::vector<Segment> in_box = components(mask, frame.depth_m, type.name, box, image_size.width);
-      std::move(in_box.begin(), in_box.end(), std::back_inserter(found));
+      std::move(in_box.begin(), in_box.end(), std::back_inserter(found[t]));
     }
-    std::sort(found.begin(), found.end(), [](const Segment& a, const Segment& b) { return a.area_px > b.area_px; });
-    std::move(found.begin(), found.end(), std::back_inserter(segments));
-  }
+    std::sort(found[t].begin(), found[t].end(), [](const Segment& a, const Segment& b) { return a.area_px > b.area_px; });
+  });
+  std::vector<Segment> segments;
+  for (std::vector<Segment>& of_type : found) std::move(of_type.begin(), of_type.end(), std::back_inserter(segments));
   return segments;
 }
 }  // namespace brick_pose
