@@ -192,6 +192,11 @@ LineEvidence PlaneGrid::lineEvidence(bool constant_s, int arm_px, double on_plan
       const Eigen::Vector2d across = step.normalized();
       double left_d, left_g, right_d, right_g;
       if (!sample(centre - arm_px * across, left_d, left_g) || !sample(centre + arm_px * across, right_d, right_g)) continue;
+      // A seam lies between two faces on the plane: both sides must be on
+      // it (at the segment's border one side is another surface, whose
+      // slope would pass for a groove). Checked before the window is read.
+      if (std::isnan(left_d) || std::isnan(right_d) || std::abs(left_d) > on_plane_m || std::abs(right_d) > on_plane_m)
+        continue;
       double low_d = std::numeric_limits<double>::infinity(), low_g = low_d;
       for (int w = -half_window; w <= half_window; ++w)
       {
@@ -201,11 +206,6 @@ LineEvidence PlaneGrid::lineEvidence(bool constant_s, int arm_px, double on_plan
         low_g = std::min(low_g, g);
       }
       const std::size_t cell = static_cast<std::size_t>(line) * evidence.length + k;
-      // A seam lies between two faces on the plane: both sides must be on
-      // it (at the segment's border one side is another surface, whose
-      // slope would pass for a groove).
-      if (std::isnan(left_d) || std::isnan(right_d) || std::abs(left_d) > on_plane_m || std::abs(right_d) > on_plane_m)
-        continue;
       // Both sides above the middle: a line or a groove, not a step.
       if (std::isfinite(low_g)) raw[1][cell] = static_cast<float>(std::min(left_g, right_g) - low_g);
       if (std::isfinite(low_d)) raw[0][cell] = static_cast<float>(std::min(left_d, right_d) - low_d);
