@@ -2,14 +2,16 @@
 // (run it under callgrind or perf) and what it returns (a fingerprint of the
 // candidates and rejections, to check that a speed-up changed nothing).
 //
-//   bench_pile_frontend [--repeat N] [--threads T] [--cv-threads C] [--up-from-truth] [name=value ...]
+//   bench_pile_frontend [--repeat N] [--threads T] [--cv-threads C] [--mode M] [--up-from-truth]
+//                       [name=value ...]
 //
 // name=value are the synthetic rig's parameters (brick_pose_simulate
 // --help), e.g. scene=unorganised_pile seed=3 max_pile_bricks=12, or
 // scene=touching_rows seed=14 types=red. The frame is the one the synthetic
 // camera nodelet publishes first for that seed (noise seed seed * 1000), and
-// the front end runs with the pipeline's defaults (up from the supporting
-// plane, as in the demo without up_frame) unless --up-from-truth.
+// the front end runs with the pipeline's defaults: mode hsv unless --mode
+// (hsv, colour_free, region_growing), up from the supporting plane as in the
+// demo without up_frame unless --up-from-truth.
 //
 // --cv-threads 1 keeps OpenCV's own loops on the calling thread: under
 // callgrind (--toggle-collect=*FrontEnd::process*) the instruction counts
@@ -43,6 +45,7 @@ struct Options
   int repeat = 10;
   int threads = 2;
   int cv_threads = -1;  ///< -1: OpenCV's default
+  std::string mode = "hsv";
   bool up_from_truth = false;
   std::map<std::string, std::string> rig;
 };
@@ -56,11 +59,12 @@ Options parseOptions(int argc, char** argv)
     if (arg == "--repeat" && i + 1 < argc) options.repeat = std::atoi(argv[++i]);
     else if (arg == "--threads" && i + 1 < argc) options.threads = std::atoi(argv[++i]);
     else if (arg == "--cv-threads" && i + 1 < argc) options.cv_threads = std::atoi(argv[++i]);
+    else if (arg == "--mode" && i + 1 < argc) options.mode = argv[++i];
     else if (arg == "--up-from-truth") options.up_from_truth = true;
     else if (arg.find('=') != std::string::npos) options.rig[arg.substr(0, arg.find('='))] = arg.substr(arg.find('=') + 1);
     else
     {
-      std::fprintf(stderr, "usage: bench_pile_frontend [--repeat N] [--threads T] [--cv-threads C] [--up-from-truth] "
+      std::fprintf(stderr, "usage: bench_pile_frontend [--repeat N] [--threads T] [--cv-threads C] [--mode M] [--up-from-truth] "
                    "[name=value ...]\n");
       std::exit(2);
     }
@@ -113,6 +117,7 @@ int main(int argc, char** argv)
 
   FrontEndParams params;
   params.worker_threads = options.threads;
+  params.mode = parseSegmentationMode(options.mode);
   const FrontEnd front_end(config.catalogue, params);
 
   std::vector<double> segmentation_ms, cloud_ms, roi_ms, total_ms, cpu_ms;

@@ -201,6 +201,15 @@ void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>
   });
   CloudProcessingTimings cloud_work;
   double total_work_ms = 0.0;
+  // Reserved: a growing vector of candidates would copy them.
+  std::size_t candidate_count = result.candidates.size(), rejection_count = result.rejections.size();
+  for (const RoiOutcome& outcome : outcomes)
+  {
+    candidate_count += outcome.candidates.size();
+    rejection_count += outcome.rejections.size();
+  }
+  result.candidates.reserve(candidate_count);
+  result.rejections.reserve(rejection_count);
   for (std::size_t i = 0; i < segments.size(); ++i)
   {
     appendOutcome(segments[i], std::move(outcomes[i]), result);

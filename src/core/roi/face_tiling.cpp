@@ -658,6 +658,7 @@ FaceTiling tileFace(const RgbdFrame& frame, const Segment& segment, const BrickC
   Tiler tiler(grid, types, tolerance_m, params, evidence_params);
   const std::vector<Tiler::Placed> placed = tiler.run();
   tiling.untiled_fraction = static_cast<double>(grid.freeCount()) / segment_cells;
+  tiling.tiles.reserve(placed.size());  // a growing vector would copy the tiles' segments
   for (const Tiler::Placed& tile : placed)
   {
     FaceTile face;

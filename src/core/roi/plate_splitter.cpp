@@ -181,6 +181,7 @@ std::vector<Segment> splitSideBySide(const RgbdFrame& frame, const Segment& segm
     }
   }
   std::vector<Segment> split;
+  split.reserve(part_masks.size());  // a growing vector would copy the segments
   for (const cv::Mat& mask : part_masks)
     split.push_back(croppedSegmentFromMask(mask, box, frame.depth_m, segment.type_name));
   return split;
@@ -265,6 +266,7 @@ std::vector<Segment> splitAtDepthSteps(const RgbdFrame& frame, const Segment& se
   // Each part boxed tightly (scanning only its own box): the plates of a
   // pile are small parts of the segment that joined them.
   std::vector<Segment> parts;
+  parts.reserve(kept.size());  // a growing vector would copy the segments
   const int width = frame.width_px();
   for (const int label : kept)
   {

@@ -467,6 +467,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
     if (!reason) judgeCompleteness(frame, context, !typed_by_size, candidate);
   });
   RoiOutcome outcome;
+  outcome.candidates.reserve(tiling.tiles.size());  // a growing vector would copy the candidates
   for (int k = 0; k < tile_count; ++k)
   {
     if (cloud_timings) *cloud_timings += tile_timings[k];

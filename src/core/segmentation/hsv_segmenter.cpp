@@ -23,6 +23,16 @@ void HsvSegmenterParams::validate() const
 
 HsvSegmenter::HsvSegmenter(const HsvSegmenterParams& params) : params_(params) { params_.validate(); }
 
+namespace
+{
+std::size_t totalSize(const std::vector<std::vector<Segment>>& groups)
+{
+  std::size_t total = 0;
+  for (const std::vector<Segment>& group : groups) total += group.size();
+  return total;
+}
+}  // namespace
+
 cv::Mat HsvSegmenter::thresholdHsv(const cv::Mat& hsv, const HsvRange& range)
 {
   cv::Mat mask;
@@ -56,7 +66,12 @@ std::vector<Segment> HsvSegmenter::components(const cv::Mat& mask, const cv::Mat
 {
   cv::Mat labels, stats, centroids;
   const int label_count = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  // Reserved: a vector of segments that grows copies them (cv::Mat's move
+  // is not noexcept), pixel lists and all.
   std::vector<Segment> segments;
+  int kept = 0;
+  for (int label = 1; label < label_count; ++label) kept += stats.at<int>(label, cv::CC_STAT_AREA) >= params_.min_area_px;
+  segments.reserve(static_cast<std::size_t>(kept));
   for (int label = 1; label < label_count; ++label)
   {
     const int area = stats.at<int>(label, cv::CC_STAT_AREA);
@@ -202,6 +217,7 @@ std::vector<Segment> HsvSegmenter::segment(const RgbdFrame& frame, const BrickCa
   std::vector<std::vector<Segment>> found(coloured.size());
   parallelFor(static_cast<int>(coloured.size()), params_.worker_threads, [&](int t) {
     const BrickType& type = *coloured[t];
+    std::vector<std::vector<Segment>> in_boxes;
     for (const cv::Rect& box : coarseBoxes(coarse_hsv, *type.plate_hsv, image_size))
     {
       cv::Mat hsv;
@@ -209,12 +225,15 @@ std::vector<Segment> HsvSegmenter::segment(const RgbdFrame& frame, const BrickCa
       cv::Mat mask = thresholdHsv(hsv, *type.plate_hsv);
       cleanMask(mask);
       cutAtDepthJumps(mask, frame.depth_m(box));
-      std::vector<Segment> in_box = components(mask, frame.depth_m, type.name, box, image_size.width);
-      std::move(in_box.begin(), in_box.end(), std::back_inserter(found[t]));
+      in_boxes.push_back(components(mask, frame.depth_m, type.name, box, image_size.width));
     }
+    found[t].reserve(totalSize(in_boxes));  // moved in below, never copied
+    for (std::vector<Segment>& in_box : in_boxes)
+      std::move(in_box.begin(), in_box.end(), std::back_inserter(found[t]));
     std::sort(found[t].begin(), found[t].end(), [](const Segment& a, const Segment& b) { return a.area_px > b.area_px; });
   });
   std::vector<Segment> segments;
+  segments.reserve(totalSize(found));
   for (std::vector<Segment>& of_type : found) std::move(of_type.begin(), of_type.end(), std::back_inserter(segments));
   return segments;
 }
