@@ -129,31 +129,35 @@ void HsvSegmenter::cutAtDepthJumps(cv::Mat& mask, const cv::Mat& depth_m) const
   // plates even under 8-connectivity. Only jumps to another mask pixel
   // count: the outline against the background keeps its pixels. A pixel
   // without depth is cleared when the depths on either side of it differ.
-  std::vector<cv::Point> cut;
+  // Each pair of neighbours with depth is judged once (from its left or
+  // upper pixel) and marks both; a pair with a pixel without depth never
+  // differs. The marks are applied after the pass, which reads the mask
+  // as it was.
+  cv::Mat cut = cv::Mat::zeros(rows, cols, CV_8UC1);
   for (int y = 0; y < rows; ++y)
   {
     const std::uint8_t* mask_row = mask.ptr<std::uint8_t>(y);
-    const std::uint8_t* mask_up = y > 0 ? mask.ptr<std::uint8_t>(y - 1) : nullptr;
     const std::uint8_t* mask_down = y + 1 < rows ? mask.ptr<std::uint8_t>(y + 1) : nullptr;
     const float* row = depth_m.ptr<float>(y);
-    const float* up = y > 0 ? depth_m.ptr<float>(y - 1) : nullptr;
     const float* down = y + 1 < rows ? depth_m.ptr<float>(y + 1) : nullptr;
+    std::uint8_t* cut_row = cut.ptr<std::uint8_t>(y);
+    std::uint8_t* cut_down = y + 1 < rows ? cut.ptr<std::uint8_t>(y + 1) : nullptr;
     for (int x = 0; x < cols; ++x)
     {
       if (!mask_row[x]) continue;
       const float z = row[x];
-      bool at_jump = false;
       if (std::isnan(z))
-        at_jump = differ(firstValid(y, x, 0, -1), firstValid(y, x, 0, 1)) ||
-                  differ(firstValid(y, x, -1, 0), firstValid(y, x, 1, 0));
-      else
-        at_jump = (x + 1 < cols && mask_row[x + 1] && differ(z, row[x + 1])) ||
-                  (x > 0 && mask_row[x - 1] && differ(z, row[x - 1])) ||
-                  (mask_down && mask_down[x] && differ(z, down[x])) || (mask_up && mask_up[x] && differ(z, up[x]));
-      if (at_jump) cut.emplace_back(x, y);
+      {
+        if (differ(firstValid(y, x, 0, -1), firstValid(y, x, 0, 1)) ||
+            differ(firstValid(y, x, -1, 0), firstValid(y, x, 1, 0)))
+          cut_row[x] = 255;
+        continue;
+      }
+      if (x + 1 < cols && mask_row[x + 1] && differ(z, row[x + 1])) cut_row[x] = cut_row[x + 1] = 255;
+      if (mask_down && mask_down[x] && differ(z, down[x])) cut_row[x] = cut_down[x] = 255;
     }
   }
-  for (const cv::Point& p : cut) mask.at<std::uint8_t>(p) = 0;
+  mask.setTo(0, cut);
 }
 
 std::vector<cv::Rect> HsvSegmenter::coarseBoxes(const cv::Mat& coarse_hsv, const HsvRange& range, cv::Size image_size) const
