@@ -6,6 +6,7 @@
 
 #include "brick_pose/common/errors.h"
 #include "brick_pose/pipeline/front_end.h"
+#include "brick_pose/roi/cell_counts.h"
 #include "brick_pose/roi/face_tiling.h"
 #include "brick_pose/segmentation/hsv_segmenter.h"
 #include "touching_plates_scene.h"
@@ -217,6 +218,27 @@ TEST(FaceTiling, ParameterChecks)
   params = FaceTilingParams();
   params.cell_m = -1.0;
   EXPECT_THROW(params.validate(), ConfigError);
+}
+
+TEST(CellCounts, CountsTheStateOverAnyRectangleAndNothingBeyondTheGrid)
+{
+  const int nx = 13, ny = 7;
+  std::vector<std::uint8_t> states(static_cast<std::size_t>(nx) * ny);
+  for (std::size_t k = 0; k < states.size(); ++k) states[k] = static_cast<std::uint8_t>((k * 7 + k / 5) % 3);
+  const CellCounts counts(states, nx, ny, 1);
+  for (int i0 = -2; i0 <= nx + 1; ++i0)
+    for (int i1 = i0 - 1; i1 <= nx + 2; ++i1)
+      for (int j0 = -2; j0 <= ny + 1; ++j0)
+        for (int j1 = j0 - 1; j1 <= ny + 2; ++j1)
+        {
+          int expected = 0;
+          for (int j = std::max(0, j0); j < std::min(ny, j1); ++j)
+            for (int i = std::max(0, i0); i < std::min(nx, i1); ++i) expected += states[j * nx + i] == 1 ? 1 : 0;
+          ASSERT_EQ(counts.count(i0, i1, j0, j1), expected) << i0 << " " << i1 << " " << j0 << " " << j1;
+        }
+  EXPECT_GT(counts.count(0, nx, 0, ny), 0);
+  EXPECT_LT(counts.count(0, nx, 0, ny), nx * ny);
+  EXPECT_EQ(CellCounts(states, nx, ny, 9).count(0, nx, 0, ny), 0) << "a state no cell holds";
 }
 }  // namespace
 }  // namespace brick_pose

@@ -64,7 +64,9 @@ struct FrontEndParams
   /// Segments are filtered on this many threads (1: in the caller's thread).
   /// A pile's segments are independent and a long brick's face alone can
   /// take as long as the rest, so two workers on a 2-core machine about
-  /// halve the ROI stage.
+  /// halve the ROI stage. The same threads search the plate colours
+  /// (HsvSegmenterParams::worker_threads) and measure the bricks a merged
+  /// face is cut into (RoiFilterParams::worker_threads).
   int worker_threads = 2;
 
   static CloudProcessorParams defaultSegmentCloudParams();

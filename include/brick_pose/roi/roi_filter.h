@@ -58,6 +58,12 @@ struct RoiFilterParams
   SideFaceParams sides;
   PlaneFitParams plane;
   QuadFitParams quad;
+  /// The bricks a merged face is cut into are measured on this many threads
+  /// (1: in the caller's). A row of touching bricks is one segment, so the
+  /// front end's threads over segments leave one core idle while its dozen
+  /// bricks are measured. Not a parameter of its own: the front end passes
+  /// front_end_threads.
+  int worker_threads = 1;
 
   void validate() const;  ///< Throws ConfigError naming the field.
 };

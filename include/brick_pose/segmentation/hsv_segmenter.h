@@ -35,6 +35,11 @@ struct HsvSegmenterParams
   /// different plates (bricks are 0.2 m tall; D415 noise at 2 m is ~7 mm).
   /// 0 disables the cut.
   double depth_jump_m = 0.06;
+  /// The colours are searched on this many threads (1: in the caller's).
+  /// Each type's search is independent, and on a pile the colours' boxes
+  /// cost about the same, so two threads about halve the segmentation. Not
+  /// a parameter of its own: the front end passes front_end_threads.
+  int worker_threads = 1;
 
   void validate() const;  ///< Throws ConfigError naming the field.
 };

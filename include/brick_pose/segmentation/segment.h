@@ -32,4 +32,11 @@ struct Segment
 /// into parts.
 Segment segmentFromMask(const cv::Mat& mask_px, const cv::Rect& box_px, const cv::Mat& depth_m,
                         const std::string& type_name);
+
+/// Same, with the box shrunk to the mask's non-zero pixels (the mask a
+/// cropped copy). A part of a big segment (one brick of a merged row) is
+/// then processed at its own size, not at its parent's. The same pixels, in
+/// the same order; an empty mask keeps `box_px`.
+Segment croppedSegmentFromMask(const cv::Mat& mask_px, const cv::Rect& box_px, const cv::Mat& depth_m,
+                               const std::string& type_name);
 }  // namespace brick_pose

@@ -11,7 +11,7 @@ namespace brick_pose
 namespace
 {
 /// Plane through the selected points (all when `keep` is empty).
-PlaneFit fitSelected(const std::vector<Eigen::Vector3d>& points, const std::vector<bool>& keep)
+PlaneFit fitSelected(const std::vector<Eigen::Vector3d>& points, const std::vector<unsigned char>& keep)
 {
   PlaneFit plane;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -20,13 +20,22 @@ PlaneFit fitSelected(const std::vector<Eigen::Vector3d>& points, const std::vect
     if (keep.empty() || keep[i]) { sum += points[i]; ++count; }
   if (count < 3) return plane;
   const Eigen::Vector3d centroid = sum / static_cast<double>(count);
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  // The six distinct sums of the symmetric covariance (the same products,
+  // added in the same order, as the full outer product's).
+  double xx = 0.0, xy = 0.0, xz = 0.0, yy = 0.0, yz = 0.0, zz = 0.0;
   for (std::size_t i = 0; i < points.size(); ++i)
   {
     if (!keep.empty() && !keep[i]) continue;
     const Eigen::Vector3d d = points[i] - centroid;
-    covariance.noalias() += d * d.transpose();
+    xx += d.x() * d.x();
+    xy += d.x() * d.y();
+    xz += d.x() * d.z();
+    yy += d.y() * d.y();
+    yz += d.y() * d.z();
+    zz += d.z() * d.z();
   }
+  Eigen::Matrix3d covariance;
+  covariance << xx, xy, xz, xy, yy, yz, xz, yz, zz;
   covariance /= static_cast<double>(count);
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
   // Collinear points have two vanishing eigenvalues: no unique plane.
@@ -62,7 +71,7 @@ PlaneFit fitPlane(const pcl::PointCloud<pcl::PointXYZ>& cloud, const PlaneFitPar
 
   PlaneFit plane = fitSelected(points, {});
   std::vector<double> residuals(points.size());
-  std::vector<bool> keep(points.size());
+  std::vector<unsigned char> keep(points.size());
   for (int iteration = 0; plane.valid && iteration < params.refit_iterations; ++iteration)
   {
     for (std::size_t i = 0; i < points.size(); ++i) residuals[i] = std::abs(plane.signedDistance(points[i]));

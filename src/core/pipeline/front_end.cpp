@@ -51,9 +51,18 @@ RoiFilterParams pieceFilterParams(const FrontEndParams& params)
 {
   params.roi.validate();  // as configured, before the piece threshold replaces one value
   RoiFilterParams roi = params.roi;
+  roi.worker_threads = std::max(1, params.worker_threads);  // the bricks of a merged face on the front end's threads
   if (params.merge_face_pieces)
     roi.dimensions.min_visible_fraction = std::min(roi.dimensions.min_visible_fraction, kMinPieceFraction);
   return roi;
+}
+
+/// The colour search runs on the front end's threads.
+HsvSegmenterParams segmenterParams(const FrontEndParams& params)
+{
+  HsvSegmenterParams hsv = params.hsv;
+  hsv.worker_threads = std::max(1, params.worker_threads);
+  return hsv;
 }
 
 const BrickCatalogue& nonEmpty(const BrickCatalogue& catalogue)
@@ -131,7 +140,7 @@ CloudProcessorParams FrontEndParams::defaultSegmentCloudParams()
 FrontEnd::FrontEnd(const BrickCatalogue& catalogue, const FrontEndParams& params)
   : catalogue_(nonEmpty(catalogue)),
     params_(params),
-    hsv_segmenter_(params.hsv),
+    hsv_segmenter_(segmenterParams(params)),
     region_growing_segmenter_(params.region_growing),
     colour_free_segmenter_(params.colour_free),
     roi_filter_(catalogue, pieceFilterParams(params), params.cloud)
@@ -192,6 +201,15 @@ void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>
   });
   CloudProcessingTimings cloud_work;
   double total_work_ms = 0.0;
+  // Reserved: a growing vector of candidates would copy them.
+  std::size_t candidate_count = result.candidates.size(), rejection_count = result.rejections.size();
+  for (const RoiOutcome& outcome : outcomes)
+  {
+    candidate_count += outcome.candidates.size();
+    rejection_count += outcome.rejections.size();
+  }
+  result.candidates.reserve(candidate_count);
+  result.rejections.reserve(rejection_count);
   for (std::size_t i = 0; i < segments.size(); ++i)
   {
     appendOutcome(segments[i], std::move(outcomes[i]), result);

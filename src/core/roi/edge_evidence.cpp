@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "brick_pose/common/errors.h"
+#include "brick_pose/common/rounding.h"
 
 namespace brick_pose
 {
@@ -24,6 +25,10 @@ struct Profile
   int rows = 0;
   int min_offset = 0;
   int max_offset = 0;
+  /// Columns beyond this have only `in_image`: their depth is read where a
+  /// judgement needs it (the far band stands in for a near band without
+  /// depth, which is rare), and their grey level never is.
+  int sampled_max_offset = 0;
   std::vector<float> offset_m;  ///< NaN where there is no depth
   std::vector<float> grey;      ///< NaN outside the image
   std::vector<unsigned char> in_image;
@@ -31,6 +36,45 @@ struct Profile
   int columns() const { return max_offset - min_offset + 1; }
   int at(int row, int offset) const { return row * columns() + (offset - min_offset); }
 };
+
+/// The line a profile is sampled across: `rows` positions evenly from
+/// `from_px` to `to_px` (one in the middle when rows is 1), and whole-pixel
+/// offsets along the unit vector `outward` from each.
+struct ProfileLine
+{
+  const RgbdFrame& frame;
+  const PlaneFit& plane;
+  Eigen::Vector2d from_px, to_px, outward;
+  int rows;
+
+  Eigen::Vector2d onEdge(int row) const
+  {
+    const double t = rows == 1 ? 0.5 : static_cast<double>(row) / (rows - 1);
+    return from_px + t * (to_px - from_px);
+  }
+
+  /// The pixel `offset` out from `on_edge`; false outside the image.
+  bool pixel(const Eigen::Vector2d& on_edge, int offset, int& u, int& v) const
+  {
+    const Eigen::Vector2d p = on_edge + offset * outward;
+    u = roundToInt(p.x());
+    v = roundToInt(p.y());
+    return u >= 0 && v >= 0 && u < frame.width_px() && v < frame.height_px();
+  }
+
+  /// Signed distance (m) of the pixel's depth from the plane; NaN without depth.
+  double planeOffsetM(int u, int v) const
+  {
+    const float z = frame.depthAt(u, v);
+    return std::isnan(z) ? std::numeric_limits<double>::quiet_NaN()
+                         : plane.signedDistance(frame.camera.backProject(u, v, z));
+  }
+};
+
+int profileRows(const Eigen::Vector2d& from_px, const Eigen::Vector2d& to_px, double spacing_px)
+{
+  return std::max(1, static_cast<int>(std::floor((to_px - from_px).norm() / spacing_px)) + 1);
+}
 
 double median(std::vector<double>& values)
 {
@@ -49,46 +93,44 @@ double robustSigma(std::vector<double> values)
   return 1.4826 * median(values);
 }
 
-Profile sampleProfile(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& from_px,
-                      const Eigen::Vector2d& to_px, const Eigen::Vector2d& outward_unit, int min_offset, int max_offset,
-                      double spacing_px)
+/// The profile across `line` at offsets [min_offset, max_offset], depth and
+/// grey read up to sampled_max_offset.
+Profile sampleProfile(const ProfileLine& line, int min_offset, int max_offset, int sampled_max_offset)
 {
   Profile profile;
-  const double length_px = (to_px - from_px).norm();
-  profile.rows = std::max(1, static_cast<int>(std::floor(length_px / spacing_px)) + 1);
+  profile.rows = line.rows;
   profile.min_offset = min_offset;
   profile.max_offset = max_offset;
+  profile.sampled_max_offset = sampled_max_offset;
   const std::size_t cells = static_cast<std::size_t>(profile.rows) * static_cast<std::size_t>(profile.columns());
   profile.offset_m.assign(cells, kMissing);
   profile.grey.assign(cells, kMissing);
   profile.in_image.assign(cells, 0);
-  const int width = frame.width_px(), height = frame.height_px();
   for (int row = 0; row < profile.rows; ++row)
   {
-    const double t = profile.rows == 1 ? 0.5 : static_cast<double>(row) / (profile.rows - 1);
-    const Eigen::Vector2d on_edge = from_px + t * (to_px - from_px);
+    const Eigen::Vector2d on_edge = line.onEdge(row);
     for (int offset = min_offset; offset <= max_offset; ++offset)
     {
-      const Eigen::Vector2d p = on_edge + offset * outward_unit;
-      const int u = static_cast<int>(std::lround(p.x())), v = static_cast<int>(std::lround(p.y()));
-      if (u < 0 || v < 0 || u >= width || v >= height) continue;
+      int u = 0, v = 0;
+      if (!line.pixel(on_edge, offset, u, v)) continue;
       const int cell = profile.at(row, offset);
       profile.in_image[cell] = 1;
-      const cv::Vec3b& rgb = frame.rgb.ptr<cv::Vec3b>(v)[u];
+      if (offset > sampled_max_offset) continue;
+      const cv::Vec3b& rgb = line.frame.rgb.ptr<cv::Vec3b>(v)[u];
       profile.grey[cell] = (static_cast<float>(rgb[0]) + rgb[1] + rgb[2]) / 3.0f;
-      const float z = frame.depthAt(u, v);
-      if (!std::isnan(z)) profile.offset_m[cell] = static_cast<float>(plane.signedDistance(frame.camera.backProject(u, v, z)));
+      profile.offset_m[cell] = static_cast<float>(line.planeOffsetM(u, v));
     }
   }
   return profile;
 }
 
-/// Median over rows of each column, of depth offsets or grey levels.
-std::vector<double> columnMedians(const Profile& profile, const std::vector<float>& values)
+/// Median over rows of each column at offsets [first, last] (NaN at the
+/// others), of depth offsets or grey levels.
+std::vector<double> columnMedians(const Profile& profile, const std::vector<float>& values, int first, int last)
 {
   std::vector<double> medians(static_cast<std::size_t>(profile.columns()), std::numeric_limits<double>::quiet_NaN());
   std::vector<double> column;
-  for (int offset = profile.min_offset; offset <= profile.max_offset; ++offset)
+  for (int offset = std::max(first, profile.min_offset); offset <= std::min(last, profile.max_offset); ++offset)
   {
     column.clear();
     for (int row = 0; row < profile.rows; ++row)
@@ -156,8 +198,10 @@ constexpr int kSeamArm = 3;
 SeamMeasure measureSeam(const Profile& profile, const EdgeEvidenceParams& params)
 {
   SeamMeasure seam;
-  const std::vector<double> depth = columnMedians(profile, profile.offset_m);
-  const std::vector<double> grey = columnMedians(profile, profile.grey);
+  // Only the columns a dip may span are read.
+  const int reach = params.seam_search_px + kSeamArm;
+  const std::vector<double> depth = columnMedians(profile, profile.offset_m, -reach, reach);
+  const std::vector<double> grey = columnMedians(profile, profile.grey, -reach, reach);
   const double groove = largestDip(depth, profile.min_offset, params.seam_search_px, kSeamArm);
   // A line darker or brighter than both sides (a shadowed gap, or a gap
   // showing a paler side face).
@@ -190,7 +234,7 @@ bool lineSeen(const SeamMeasure& seam, const EdgeEvidenceParams& params)
 /// to the column medians of the outside band, evaluated at offset 0.
 double outsideInterceptM(const Profile& profile, int first_offset, int last_offset)
 {
-  const std::vector<double> medians = columnMedians(profile, profile.offset_m);
+  const std::vector<double> medians = columnMedians(profile, profile.offset_m, first_offset, last_offset);
   double n = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
   for (int offset = first_offset; offset <= last_offset; ++offset)
   {
@@ -210,31 +254,32 @@ double outsideInterceptM(const Profile& profile, int first_offset, int last_offs
 /// Beyond the profile: the plane offset (m) of the first pixel with depth
 /// along a row, up to `reach_px` out (a stereo shadow beyond a step can be
 /// wider than the profile at close range); NaN when there is none.
-struct FarProbe
+double firstDepthBeyond(const ProfileLine& line, int row, int first_offset, int reach_px)
 {
-  const RgbdFrame& frame;
-  const PlaneFit& plane;
-  Eigen::Vector2d from_px, to_px, outward;
-  int rows;
-
-  double operator()(int row, int first_offset, int reach_px) const
+  const Eigen::Vector2d on_edge = line.onEdge(row);
+  for (int offset = first_offset; offset <= reach_px; ++offset)
   {
-    const double t = rows == 1 ? 0.5 : static_cast<double>(row) / (rows - 1);
-    const Eigen::Vector2d on_edge = from_px + t * (to_px - from_px);
-    for (int offset = first_offset; offset <= reach_px; ++offset)
-    {
-      const Eigen::Vector2d p = on_edge + offset * outward;
-      const int u = static_cast<int>(std::lround(p.x())), v = static_cast<int>(std::lround(p.y()));
-      if (u < 0 || v < 0 || u >= frame.width_px() || v >= frame.height_px()) break;
-      const float z = frame.depthAt(u, v);
-      if (!std::isnan(z)) return plane.signedDistance(frame.camera.backProject(u, v, z));
-    }
-    return std::numeric_limits<double>::quiet_NaN();
+    int u = 0, v = 0;
+    if (!line.pixel(on_edge, offset, u, v)) break;
+    const double offset_m = line.planeOffsetM(u, v);
+    if (!std::isnan(offset_m)) return offset_m;
   }
-};
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+/// The profile's depth offset at a cell, read from the image for the columns
+/// it did not sample (stored as the profile stores it, in float).
+float profileOffsetM(const Profile& profile, const ProfileLine& line, int row, int offset)
+{
+  if (offset <= profile.sampled_max_offset) return profile.offset_m[profile.at(row, offset)];
+  int u = 0, v = 0;
+  if (!line.pixel(line.onEdge(row), offset, u, v)) return kMissing;
+  return static_cast<float>(line.planeOffsetM(u, v));
+}
 
 /// Judges one stretch of an edge from its profile.
-EdgeEvidence judgeStretch(const Profile& profile, const FarProbe& far, double step_m, const EdgeEvidenceParams& params)
+EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, double step_m,
+                          const EdgeEvidenceParams& params)
 {
   EdgeEvidence evidence;
   const int first_outside = params.inner_gap_px + 1;
@@ -253,7 +298,8 @@ EdgeEvidence judgeStretch(const Profile& profile, const FarProbe& far, double st
       ++in_image;
       const bool near_band = offset <= params.probe_px;
       if (!near_band && sample_values.size() >= 2) continue;
-      if (!std::isnan(profile.offset_m[cell])) sample_values.push_back(profile.offset_m[cell]);
+      const float offset_m = profileOffsetM(profile, line, row, offset);
+      if (!std::isnan(offset_m)) sample_values.push_back(offset_m);
     }
     // The edge itself on (or next to) the border counts as cut too.
     if (in_image < 3 || !profile.in_image[profile.at(row, 0)])
@@ -263,7 +309,7 @@ EdgeEvidence judgeStretch(const Profile& profile, const FarProbe& far, double st
     }
     if (sample_values.size() < 2)
     {
-      const double beyond = far(row, profile.max_offset + 1, kFarReachFactor * params.probe_px);
+      const double beyond = firstDepthBeyond(line, row, profile.max_offset + 1, kFarReachFactor * params.probe_px);
       if (std::isnan(beyond))
       {
         ++missing;
@@ -396,10 +442,9 @@ EdgeEvidence judgeSpan(const RgbdFrame& frame, const PlaneFit& plane, const Eige
                        const Eigen::Vector2d& to, const Eigen::Vector2d& outward, const EdgeEvidenceParams& params)
 {
   const double step_m = std::max(params.min_step_m, params.step_noise_factor * plane.rms_m);
-  const Profile profile =
-      sampleProfile(frame, plane, from, to, outward, -params.probe_px, 2 * params.probe_px, params.sample_spacing_px);
-  const FarProbe far{frame, plane, from, to, outward, profile.rows};
-  return judgeStretch(profile, far, step_m, params);
+  const ProfileLine line{frame, plane, from, to, outward, profileRows(from, to, params.sample_spacing_px)};
+  const Profile profile = sampleProfile(line, -params.probe_px, 2 * params.probe_px, params.probe_px);
+  return judgeStretch(profile, line, step_m, params);
 }
 
 bool judgeable(double length_px, const Eigen::Vector2d& outward_px, const PlaneFit& plane)
@@ -451,8 +496,8 @@ SeamScore scoreSeam(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::
   const Eigen::Vector2d along = b_px - a_px;
   if (!(along.norm() > 1.0) || !plane.valid) return score;
   const Eigen::Vector2d across = Eigen::Vector2d(-along.y(), along.x()).normalized();
-  const Profile profile = sampleProfile(frame, plane, a_px, b_px, across, -params.probe_px, params.probe_px,
-                                        params.sample_spacing_px);
+  const ProfileLine line{frame, plane, a_px, b_px, across, profileRows(a_px, b_px, params.sample_spacing_px)};
+  const Profile profile = sampleProfile(line, -params.probe_px, params.probe_px, params.probe_px);
   const SeamMeasure seam = measureSeam(profile, params);
   score.groove_m = seam.groove_m;
   score.line_contrast = seam.line_contrast;

@@ -8,6 +8,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "brick_pose/common/errors.h"
+#include "brick_pose/common/rounding.h"
+#include "brick_pose/roi/cell_counts.h"
 
 namespace brick_pose
 {
@@ -104,6 +106,8 @@ public:
   void setState(int i, int j, std::uint8_t value) { state_[static_cast<std::size_t>(j) * nx_ + i] = value; }
   bool free(int i, int j) const { return inGrid(i, j) && state(i, j) == kFree; }
   int freeCount() const { return static_cast<int>(std::count(state_.begin(), state_.end(), kFree)); }
+  /// The cells holding `state` over any rectangle, as the grid is now.
+  CellCounts counts(std::uint8_t state) const { return CellCounts(state_, nx_, ny_, state); }
 
   /// Whether a cell beyond the grid could belong to a brick cut off from
   /// view: outside the image, or behind a nearer surface.
@@ -112,7 +116,7 @@ public:
     const Eigen::Vector3d point_m = point(i + 0.5, j + 0.5);
     if (point_m.z() <= 0.05) return true;
     const Eigen::Vector2d p = frame_.camera.project(point_m);
-    const int u = static_cast<int>(std::lround(p.x())), v = static_cast<int>(std::lround(p.y()));
+    const int u = roundToInt(p.x()), v = roundToInt(p.y());
     if (u < 0 || v < 0 || u >= frame_.width_px() || v >= frame_.height_px()) return true;
     const float z = frame_.depthAt(u, v);
     return std::isnan(z) || z < point_m.z() - 0.02;
@@ -138,7 +142,7 @@ private:
           continue;
         }
         const Eigen::Vector2d p = frame_.camera.project(point_m);
-        const int u = static_cast<int>(std::lround(p.x())), v = static_cast<int>(std::lround(p.y()));
+        const int u = roundToInt(p.x()), v = roundToInt(p.y());
         if (u < 0 || v < 0 || u >= frame_.width_px() || v >= frame_.height_px()) setState(i, j, kOffImage);
         else if (box.contains(cv::Point(u, v)) && segment.mask.at<std::uint8_t>(v - box.y, u - box.x))
           setState(i, j, kFree);
@@ -169,7 +173,7 @@ LineEvidence PlaneGrid::lineEvidence(bool constant_s, int arm_px, double on_plan
   for (auto& channel : raw)
     channel.assign(static_cast<std::size_t>(evidence.lines) * evidence.length, std::numeric_limits<float>::quiet_NaN());
   auto sample = [&](const Eigen::Vector2d& p, double& offset_m, double& grey) {
-    const int u = static_cast<int>(std::lround(p.x())), v = static_cast<int>(std::lround(p.y()));
+    const int u = roundToInt(p.x()), v = roundToInt(p.y());
     if (u < 0 || v < 0 || u >= width || v >= height) return false;
     const cv::Vec3b& rgb = frame_.rgb.ptr<cv::Vec3b>(v)[u];
     grey = (static_cast<double>(rgb[0]) + rgb[1] + rgb[2]) / 3.0;
@@ -188,6 +192,11 @@ LineEvidence PlaneGrid::lineEvidence(bool constant_s, int arm_px, double on_plan
       const Eigen::Vector2d across = step.normalized();
       double left_d, left_g, right_d, right_g;
       if (!sample(centre - arm_px * across, left_d, left_g) || !sample(centre + arm_px * across, right_d, right_g)) continue;
+      // A seam lies between two faces on the plane: both sides must be on
+      // it (at the segment's border one side is another surface, whose
+      // slope would pass for a groove). Checked before the window is read.
+      if (std::isnan(left_d) || std::isnan(right_d) || std::abs(left_d) > on_plane_m || std::abs(right_d) > on_plane_m)
+        continue;
       double low_d = std::numeric_limits<double>::infinity(), low_g = low_d;
       for (int w = -half_window; w <= half_window; ++w)
       {
@@ -197,11 +206,6 @@ LineEvidence PlaneGrid::lineEvidence(bool constant_s, int arm_px, double on_plan
         low_g = std::min(low_g, g);
       }
       const std::size_t cell = static_cast<std::size_t>(line) * evidence.length + k;
-      // A seam lies between two faces on the plane: both sides must be on
-      // it (at the segment's border one side is another surface, whose
-      // slope would pass for a groove).
-      if (std::isnan(left_d) || std::isnan(right_d) || std::abs(left_d) > on_plane_m || std::abs(right_d) > on_plane_m)
-        continue;
       // Both sides above the middle: a line or a groove, not a step.
       if (std::isfinite(low_g)) raw[1][cell] = static_cast<float>(std::min(left_g, right_g) - low_g);
       if (std::isfinite(low_d)) raw[0][cell] = static_cast<float>(std::min(left_d, right_d) - low_d);
@@ -254,7 +258,9 @@ public:
                                  {evidence_params.min_groove_m, evidence_params.min_line_contrast})),
       along_t_(grid.lineEvidence(false, params.seam_arm_px, onPlaneM(grid, evidence_params),
                                  {evidence_params.min_groove_m, evidence_params.min_line_contrast})),
-      tolerance_cells_(std::max(1, static_cast<int>(std::lround(tolerance_m / grid.cellM()))))
+      tolerance_cells_(std::max(1, roundToInt(tolerance_m / grid.cellM()))),
+      free_(grid.counts(kFree)),
+      off_image_(grid.counts(kOffImage))
   {
     s_lines_ = {0, grid.nx()};
     t_lines_ = {0, grid.ny()};
@@ -288,7 +294,7 @@ public:
       if (!best.type) break;
       take(best);
       placed.push_back(best);
-      if (grid_.freeCount() < 0.05 * total_free) break;
+      if (free_.count(0, grid_.nx(), 0, grid_.ny()) < 0.05 * total_free) break;
     }
     return placed;
   }
@@ -374,6 +380,10 @@ private:
     int best = direction > 0 ? limit : -1;
     for (int k = std::max(0, from); k < std::min(along_s ? grid_.ny() : grid_.nx(), to); ++k)
     {
+      // Rows with nothing untiled before `best` cannot move it.
+      const int scan_from = direction > 0 ? 0 : best + 1, scan_to = direction > 0 ? best : limit;
+      if ((along_s ? free_.count(scan_from, scan_to, k, k + 1) : free_.count(k, k + 1, scan_from, scan_to)) == 0)
+        continue;
       if (direction > 0)
       {
         for (int a = 0; a < best; ++a)
@@ -410,17 +420,16 @@ private:
     LineSupport result;
     // Boundary: beyond the line there is little untiled segment (inward 0:
     // a line inside a tile, never a boundary).
+    // Two lines of cells on either side, over [from, to).
     int beyond = 0, inside = 0, counted = 0;
-    if (inward != 0)
-      for (int k = from; k < to; ++k)
-      for (int depth = 0; depth < 2; ++depth)
-      {
-        const int in_line = inward > 0 ? line + depth : line - 1 - depth;
-        const int out_line = inward > 0 ? line - 1 - depth : line + depth;
-        inside += constant_s ? grid_.free(in_line, k) : grid_.free(k, in_line);
-        beyond += constant_s ? grid_.free(out_line, k) : grid_.free(k, out_line);
-        ++counted;
-      }
+    if (inward != 0 && to > from)
+    {
+      const int in_first = inward > 0 ? line : line - 2, out_first = inward > 0 ? line - 2 : line;
+      inside = constant_s ? free_.count(in_first, in_first + 2, from, to) : free_.count(from, to, in_first, in_first + 2);
+      beyond =
+          constant_s ? free_.count(out_first, out_first + 2, from, to) : free_.count(from, to, out_first, out_first + 2);
+      counted = 2 * (to - from);
+    }
     if (counted > 0 && beyond * 10 < counted * 3 && inside * 10 > counted * 3)
     {
       result.boundary = true;
@@ -476,8 +485,8 @@ private:
     Placed result;
     const int di = anchor.di, dj = anchor.dj;
     int i = anchor.i, j = anchor.j;
-    const int length_s = static_cast<int>(std::lround((long_along_s ? type->length_m : type->width_m) / grid_.cellM()));
-    const int length_t = static_cast<int>(std::lround((long_along_s ? type->width_m : type->length_m) / grid_.cellM()));
+    const int length_s = roundToInt((long_along_s ? type->length_m : type->width_m) / grid_.cellM());
+    const int length_t = roundToInt((long_along_s ? type->width_m : type->length_m) / grid_.cellM());
     int far_i = i + di * length_s;
     int far_j = j + dj * length_t;
     LineSupport support_i, support_j;
@@ -493,22 +502,29 @@ private:
     CellRect rect{std::min(i, far_i), std::max(i, far_i), std::min(j, far_j), std::max(j, far_j)};
     if (rect.i1 - rect.i0 < 2 || rect.j1 - rect.j0 < 2) return result;
 
-    int untiled = 0, other = 0, hidden = 0, visible_other = 0, total = 0;
+    // Inside the grid from the counts; beyond it, sample sparsely whether
+    // it is hidden.
+    const int total = (rect.i1 - rect.i0) * (rect.j1 - rect.j0);
+    const int in_i0 = std::max(rect.i0, 0), in_i1 = std::min(rect.i1, grid_.nx());
+    const int in_j0 = std::max(rect.j0, 0), in_j1 = std::min(rect.j1, grid_.ny());
+    const int in_grid = std::max(0, in_i1 - in_i0) * std::max(0, in_j1 - in_j0);
+    const int untiled = free_.count(rect.i0, rect.i1, rect.j0, rect.j1);
+    int hidden = off_image_.count(rect.i0, rect.i1, rect.j0, rect.j1);
+    const int other = in_grid - untiled - hidden;
+    int visible_other = 0;
+    auto sampleBeyond = [&](int a, int b) {
+      if ((a + b) % 3 == 0) (grid_.hiddenBeyondGrid(a, b) ? hidden : visible_other) += 3;
+    };
     for (int b = rect.j0; b < rect.j1; ++b)
-      for (int a = rect.i0; a < rect.i1; ++a)
+    {
+      if (b < 0 || b >= grid_.ny())
       {
-        ++total;
-        if (!grid_.inGrid(a, b))
-        {
-          // Beyond the grid: sample sparsely whether it is hidden.
-          if ((a + b) % 3 == 0) (grid_.hiddenBeyondGrid(a, b) ? hidden : visible_other) += 3;
-          continue;
-        }
-        const std::uint8_t state = grid_.state(a, b);
-        if (state == kFree) ++untiled;
-        else if (state == kOffImage) ++hidden;
-        else ++other;
+        for (int a = rect.i0; a < rect.i1; ++a) sampleBeyond(a, b);
+        continue;
       }
+      for (int a = rect.i0; a < std::min(rect.i1, 0); ++a) sampleBeyond(a, b);
+      for (int a = std::max(rect.i0, grid_.nx()); a < rect.i1; ++a) sampleBeyond(a, b);
+    }
     const int seen = untiled + other + visible_other;
     if (seen == 0) return result;
     const double coverage = static_cast<double>(untiled) / seen;
@@ -558,6 +574,7 @@ private:
     for (int b = std::max(0, tile.rect.j0); b < std::min(grid_.ny(), tile.rect.j1); ++b)
       for (int a = std::max(0, tile.rect.i0); a < std::min(grid_.nx(), tile.rect.i1); ++a)
         if (grid_.state(a, b) == kFree) grid_.setState(a, b, kTiled);
+    free_ = grid_.counts(kFree);
     for (const int line : {tile.rect.i0, tile.rect.i1})
       if (line >= 0 && line <= grid_.nx()) s_lines_.insert(line);
     for (const int line : {tile.rect.j0, tile.rect.j1})
@@ -580,26 +597,39 @@ private:
   const EdgeEvidenceParams& evidence_params_;
   LineEvidence along_s_, along_t_;
   int tolerance_cells_;
+  CellCounts free_;       ///< untiled cells of the segment, rebuilt as tiles are taken
+  CellCounts off_image_;  ///< cells off the image (fixed)
   std::set<int> s_lines_, t_lines_;
 };
 
-/// The pixels of `segment` inside the image of a plane rectangle.
+/// The pixels of `segment` inside the image of a plane rectangle, boxed
+/// tightly: a tile is one brick of a merged row, and the work on it (its
+/// outline, its measurement) then scales with the brick, not the row.
 Segment tileSegment(const RgbdFrame& frame, const Segment& segment, const std::array<Eigen::Vector3d, 4>& corners_m)
 {
+  constexpr int kShift = 4;  // polygon corners in 1/16 px
   const cv::Rect& box = segment.bounding_box_px;
   std::vector<cv::Point> polygon;
   for (const Eigen::Vector3d& corner : corners_m)
   {
     const Eigen::Vector3d in_front(corner.x(), corner.y(), std::max(0.05, corner.z()));
     const Eigen::Vector2d p = frame.camera.project(in_front);
-    polygon.emplace_back(static_cast<int>(std::lround((p.x() - box.x) * 16.0)),
-                         static_cast<int>(std::lround((p.y() - box.y) * 16.0)));
+    polygon.emplace_back(roundToInt((p.x() - box.x) * 16.0), roundToInt((p.y() - box.y) * 16.0));
   }
-  cv::Mat inside = cv::Mat::zeros(box.size(), CV_8UC1);
-  cv::fillConvexPoly(inside, polygon, cv::Scalar(255), cv::LINE_8, 4);
+  // Only the polygon's part of the box is rasterised. Moving the polygon by
+  // whole pixels moves its fill with it, and the box's own edges still clip
+  // it where they did, so the pixels are those of a fill over the whole box.
+  const cv::Rect reach_16 = cv::boundingRect(polygon);
+  const cv::Point from_px((reach_16.x >> kShift) - 2, (reach_16.y >> kShift) - 2);
+  const cv::Point to_px(((reach_16.x + reach_16.width) >> kShift) + 3, ((reach_16.y + reach_16.height) >> kShift) + 3);
+  const cv::Rect reach = cv::Rect(from_px, to_px) & cv::Rect(cv::Point(0, 0), box.size());
+  if (reach.area() == 0) return segmentFromMask(cv::Mat::zeros(box.size(), CV_8UC1), box, frame.depth_m, segment.type_name);
+  for (cv::Point& corner : polygon) corner -= reach.tl() * (1 << kShift);
+  cv::Mat inside = cv::Mat::zeros(reach.size(), CV_8UC1);
+  cv::fillConvexPoly(inside, polygon, cv::Scalar(255), cv::LINE_8, kShift);
   cv::Mat part_mask;
-  cv::bitwise_and(segment.mask, inside, part_mask);
-  return segmentFromMask(part_mask, box, frame.depth_m, segment.type_name);
+  cv::bitwise_and(segment.mask(reach), inside, part_mask);
+  return croppedSegmentFromMask(part_mask, reach + box.tl(), frame.depth_m, segment.type_name);
 }
 }  // namespace
 
@@ -628,6 +658,7 @@ FaceTiling tileFace(const RgbdFrame& frame, const Segment& segment, const BrickC
   Tiler tiler(grid, types, tolerance_m, params, evidence_params);
   const std::vector<Tiler::Placed> placed = tiler.run();
   tiling.untiled_fraction = static_cast<double>(grid.freeCount()) / segment_cells;
+  tiling.tiles.reserve(placed.size());  // a growing vector would copy the tiles' segments
   for (const Tiler::Placed& tile : placed)
   {
     FaceTile face;

@@ -4,11 +4,14 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
 #include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
+#include "brick_pose/common/parallel_for.h"
+#include "brick_pose/common/rounding.h"
 #include "brick_pose/frame/organized_cloud.h"
 #include "brick_pose/roi/plate_splitter.h"
 #include "brick_pose/roi/type_evidence.h"
@@ -123,7 +126,7 @@ double unsegmentedCoplanarFraction(const RgbdFrame& frame, const BrickCandidate&
 {
   std::vector<cv::Point> polygon;
   for (const Eigen::Vector2d& corner : candidate.corners_px)
-    polygon.emplace_back(static_cast<int>(std::lround(corner.x())), static_cast<int>(std::lround(corner.y())));
+    polygon.emplace_back(roundToInt(corner.x()), roundToInt(corner.y()));
   const cv::Rect image(0, 0, frame.width_px(), frame.height_px());
   const cv::Rect box = cv::boundingRect(polygon) & image;
   if (box.area() == 0 || !candidate.plane.valid) return 0.0;
@@ -131,19 +134,23 @@ double unsegmentedCoplanarFraction(const RgbdFrame& frame, const BrickCandidate&
   for (cv::Point& point : polygon) point -= box.tl();
   cv::fillConvexPoly(quad, polygon, cv::Scalar(255));
   const cv::Rect& segment_box = candidate.bounding_box_px;
+  const bool has_mask = !candidate.mask.empty();
   int quad_px = 0, coplanar_px = 0;
   for (int v = box.y; v < box.br().y; ++v)
+  {
+    const unsigned char* quad_row = quad.ptr<unsigned char>(v - box.y);
+    const bool row_in_segment = has_mask && v >= segment_box.y && v < segment_box.br().y;
+    const unsigned char* mask_row = row_in_segment ? candidate.mask.ptr<unsigned char>(v - segment_box.y) : nullptr;
     for (int u = box.x; u < box.br().x; ++u)
     {
-      if (!quad.at<unsigned char>(v - box.y, u - box.x)) continue;
+      if (!quad_row[u - box.x]) continue;
       ++quad_px;
-      if (segment_box.contains(cv::Point(u, v)) && !candidate.mask.empty() &&
-          candidate.mask.at<unsigned char>(v - segment_box.y, u - segment_box.x))
-        continue;
+      if (mask_row && u >= segment_box.x && u < segment_box.br().x && mask_row[u - segment_box.x]) continue;
       const float z = frame.depthAt(u, v);
       if (!std::isnan(z) && std::abs(candidate.plane.signedDistance(frame.camera.backProject(u, v, z))) < step_m)
         ++coplanar_px;
     }
+  }
   return quad_px > 0 ? static_cast<double>(coplanar_px) / quad_px : 0.0;
 }
 
@@ -275,6 +282,7 @@ void RoiFilterParams::validate() const
   check.require(quad.side_search_px >= 0.0, "quad.side_search_px", "must be >= 0");
   check.require(quad.edge_quantile >= 0.0 && quad.edge_quantile <= 1.0, "quad.edge_quantile", "must be in [0, 1]");
   check.require(quad.min_side_points >= 2, "quad.min_side_points", "must be >= 2");
+  check.require(worker_threads >= 1, "worker_threads", "must be >= 1");
   edges.validate();
   tiling.validate();
   sides.validate();
@@ -347,7 +355,7 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
       if (!smaller.empty())
         if (std::optional<RoiOutcome> tiled =
                 tile(frame, segment, candidate, context, true, cloud_timings, &alternative, &smaller))
-          return *tiled;
+          return std::move(*tiled);
     }
     judgeCompleteness(frame, context, !segment.type_name.empty(), candidate);
     if (candidate.complete && smallerTopsExplain(frame, candidate.plane, alternative, params_.edges))
@@ -362,7 +370,8 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
   }
   // Planar and facing up but no single brick: touching bricks merged.
   if (measured)
-    if (std::optional<RoiOutcome> split = splitMerged(frame, segment, candidate, context, cloud_timings)) return *split;
+    if (std::optional<RoiOutcome> split = splitMerged(frame, segment, candidate, context, cloud_timings))
+      return std::move(*split);
   // Plates at two heights joined through an edge without a clean depth jump
   // give one bent "plane": split where the depth steps, then filter (and
   // tile) each part.
@@ -460,27 +469,36 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   // boxes; only a gap between two of them dents the depth): a cut made from
   // sizes alone would also make up the type of the bricks it separates.
   if ((seams_required || typed_by_size) && (tiling.cuts == 0 || tiling.grooved_cuts < tiling.cuts)) return std::nullopt;
-  RoiOutcome outcome;
-  for (FaceTile& tile : tiling.tiles)
-  {
+  // Each tile in its own slots, whichever thread measures it; gathered in
+  // the tiling's order.
+  const int tile_count = static_cast<int>(tiling.tiles.size());
+  std::vector<BrickCandidate> candidates(tiling.tiles.size());
+  std::vector<std::optional<std::string>> reasons(tiling.tiles.size());
+  std::vector<CloudProcessingTimings> tile_timings(tiling.tiles.size());
+  parallelFor(tile_count, params_.worker_threads, [&](int k) {
     // The tiling chose the brick's size: check the part against that type.
-    Segment& part = tile.segment;
-    part.type_name = tile.type_name;
-    BrickCandidate candidate;
-    std::optional<std::string> reason = measure(frame, part, context, cloud_timings, candidate);
+    Segment& part = tiling.tiles[k].segment;
+    part.type_name = tiling.tiles[k].type_name;
+    BrickCandidate& candidate = candidates[k];
+    std::optional<std::string>& reason = reasons[k];
+    reason = measure(frame, part, context, &tile_timings[k], candidate);
     if (!reason) reason = assignType(frame, context, part, candidate);
     // Without colour, a brick cut off by the border or an occluder could be
     // any longer type: its size does not tell.
     if (!reason && typed_by_size && anyTruncated(candidate))
       reason = "face is cut by an occluder or the image border (" + truncation(candidate) +
                "): its size cannot tell its type";
-    if (reason)
-    {
-      outcome.rejections.push_back("part of a split segment: " + *reason);
-      continue;
-    }
-    judgeCompleteness(frame, context, !typed_by_size, candidate);
-    outcome.candidates.push_back(std::move(candidate));
+    if (!reason) judgeCompleteness(frame, context, !typed_by_size, candidate);
+  });
+  RoiOutcome outcome;
+  outcome.candidates.reserve(tiling.tiles.size());  // a growing vector would copy the candidates
+  for (int k = 0; k < tile_count; ++k)
+  {
+    if (cloud_timings) *cloud_timings += tile_timings[k];
+    if (reasons[k])
+      outcome.rejections.push_back("part of a split segment: " + *reasons[k]);
+    else
+      outcome.candidates.push_back(std::move(candidates[k]));
   }
   if (tiling.untiled_fraction > 0.2)
     outcome.rejections.push_back(describe("part of a split segment: a share of", tiling.untiled_fraction,

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "brick_pose/common/errors.h"
+#include "brick_pose/common/rounding.h"
 
 namespace brick_pose
 {
@@ -56,7 +57,7 @@ Run marchDown(const RgbdFrame& frame, const Eigen::Vector3d& top_m, const Eigen:
     const Eigen::Vector3d on_side = top_m + h * down + offset_m * outward;
     if (on_side.z() <= 0.05) break;
     const Eigen::Vector2d p = frame.camera.project(on_side);
-    const int u = static_cast<int>(std::lround(p.x())), v = static_cast<int>(std::lround(p.y()));
+    const int u = roundToInt(p.x()), v = roundToInt(p.y());
     if (u < 0 || v < 0 || u >= frame.width_px() || v >= frame.height_px())
     {
       run.end = seen ? RunEnd::kHidden : RunEnd::kNone;

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "brick_pose/common/errors.h"
+#include "brick_pose/common/parallel_for.h"
 
 namespace brick_pose
 {
@@ -17,9 +18,20 @@ void HsvSegmenterParams::validate() const
   if (close_kernel_px < 0) throw ConfigError("hsv segmenter: close_kernel_px must be >= 0");
   if (coarse_factor < 1) throw ConfigError("hsv segmenter: coarse_factor must be >= 1");
   if (!(depth_jump_m >= 0.0)) throw ConfigError("hsv segmenter: depth_jump_m must be >= 0");
+  if (worker_threads < 1) throw ConfigError("hsv segmenter: worker_threads must be >= 1");
 }
 
 HsvSegmenter::HsvSegmenter(const HsvSegmenterParams& params) : params_(params) { params_.validate(); }
+
+namespace
+{
+std::size_t totalSize(const std::vector<std::vector<Segment>>& groups)
+{
+  std::size_t total = 0;
+  for (const std::vector<Segment>& group : groups) total += group.size();
+  return total;
+}
+}  // namespace
 
 cv::Mat HsvSegmenter::thresholdHsv(const cv::Mat& hsv, const HsvRange& range)
 {
@@ -54,7 +66,12 @@ std::vector<Segment> HsvSegmenter::components(const cv::Mat& mask, const cv::Mat
 {
   cv::Mat labels, stats, centroids;
   const int label_count = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  // Reserved: a vector of segments that grows copies them (cv::Mat's move
+  // is not noexcept), pixel lists and all.
   std::vector<Segment> segments;
+  int kept = 0;
+  for (int label = 1; label < label_count; ++label) kept += stats.at<int>(label, cv::CC_STAT_AREA) >= params_.min_area_px;
+  segments.reserve(static_cast<std::size_t>(kept));
   for (int label = 1; label < label_count; ++label)
   {
     const int area = stats.at<int>(label, cv::CC_STAT_AREA);
@@ -112,31 +129,35 @@ void HsvSegmenter::cutAtDepthJumps(cv::Mat& mask, const cv::Mat& depth_m) const
   // plates even under 8-connectivity. Only jumps to another mask pixel
   // count: the outline against the background keeps its pixels. A pixel
   // without depth is cleared when the depths on either side of it differ.
-  std::vector<cv::Point> cut;
+  // Each pair of neighbours with depth is judged once (from its left or
+  // upper pixel) and marks both; a pair with a pixel without depth never
+  // differs. The marks are applied after the pass, which reads the mask
+  // as it was.
+  cv::Mat cut = cv::Mat::zeros(rows, cols, CV_8UC1);
   for (int y = 0; y < rows; ++y)
   {
     const std::uint8_t* mask_row = mask.ptr<std::uint8_t>(y);
-    const std::uint8_t* mask_up = y > 0 ? mask.ptr<std::uint8_t>(y - 1) : nullptr;
     const std::uint8_t* mask_down = y + 1 < rows ? mask.ptr<std::uint8_t>(y + 1) : nullptr;
     const float* row = depth_m.ptr<float>(y);
-    const float* up = y > 0 ? depth_m.ptr<float>(y - 1) : nullptr;
     const float* down = y + 1 < rows ? depth_m.ptr<float>(y + 1) : nullptr;
+    std::uint8_t* cut_row = cut.ptr<std::uint8_t>(y);
+    std::uint8_t* cut_down = y + 1 < rows ? cut.ptr<std::uint8_t>(y + 1) : nullptr;
     for (int x = 0; x < cols; ++x)
     {
       if (!mask_row[x]) continue;
       const float z = row[x];
-      bool at_jump = false;
       if (std::isnan(z))
-        at_jump = differ(firstValid(y, x, 0, -1), firstValid(y, x, 0, 1)) ||
-                  differ(firstValid(y, x, -1, 0), firstValid(y, x, 1, 0));
-      else
-        at_jump = (x + 1 < cols && mask_row[x + 1] && differ(z, row[x + 1])) ||
-                  (x > 0 && mask_row[x - 1] && differ(z, row[x - 1])) ||
-                  (mask_down && mask_down[x] && differ(z, down[x])) || (mask_up && mask_up[x] && differ(z, up[x]));
-      if (at_jump) cut.emplace_back(x, y);
+      {
+        if (differ(firstValid(y, x, 0, -1), firstValid(y, x, 0, 1)) ||
+            differ(firstValid(y, x, -1, 0), firstValid(y, x, 1, 0)))
+          cut_row[x] = 255;
+        continue;
+      }
+      if (x + 1 < cols && mask_row[x + 1] && differ(z, row[x + 1])) cut_row[x] = cut_row[x + 1] = 255;
+      if (mask_down && mask_down[x] && differ(z, down[x])) cut_row[x] = cut_down[x] = 255;
     }
   }
-  for (const cv::Point& p : cut) mask.at<std::uint8_t>(p) = 0;
+  mask.setTo(0, cut);
 }
 
 std::vector<cv::Rect> HsvSegmenter::coarseBoxes(const cv::Mat& coarse_hsv, const HsvRange& range, cv::Size image_size) const
@@ -192,12 +213,15 @@ std::vector<Segment> HsvSegmenter::segment(const RgbdFrame& frame, const BrickCa
     coarse_rgb = frame.rgb;
   cv::cvtColor(coarse_rgb, coarse_hsv, cv::COLOR_RGB2HSV);
 
-  std::vector<Segment> segments;
+  // A type with no plate colour (a plain box) is for colour-free segmentation.
+  std::vector<const BrickType*> coloured;
   for (const BrickType& type : catalogue.types())
-  {
-    // A type with no plate colour (a plain box) is for colour-free segmentation.
-    if (!type.hasPlateColour()) continue;
-    std::vector<Segment> found;
+    if (type.hasPlateColour()) coloured.push_back(&type);
+  // Each type's segments in its own slot, joined in catalogue order.
+  std::vector<std::vector<Segment>> found(coloured.size());
+  parallelFor(static_cast<int>(coloured.size()), params_.worker_threads, [&](int t) {
+    const BrickType& type = *coloured[t];
+    std::vector<std::vector<Segment>> in_boxes;
     for (const cv::Rect& box : coarseBoxes(coarse_hsv, *type.plate_hsv, image_size))
     {
       cv::Mat hsv;
@@ -205,12 +229,16 @@ std::vector<Segment> HsvSegmenter::segment(const RgbdFrame& frame, const BrickCa
       cv::Mat mask = thresholdHsv(hsv, *type.plate_hsv);
       cleanMask(mask);
       cutAtDepthJumps(mask, frame.depth_m(box));
-      std::vector<Segment> in_box = components(mask, frame.depth_m, type.name, box, image_size.width);
-      std::move(in_box.begin(), in_box.end(), std::back_inserter(found));
+      in_boxes.push_back(components(mask, frame.depth_m, type.name, box, image_size.width));
     }
-    std::sort(found.begin(), found.end(), [](const Segment& a, const Segment& b) { return a.area_px > b.area_px; });
-    std::move(found.begin(), found.end(), std::back_inserter(segments));
-  }
+    found[t].reserve(totalSize(in_boxes));  // moved in below, never copied
+    for (std::vector<Segment>& in_box : in_boxes)
+      std::move(in_box.begin(), in_box.end(), std::back_inserter(found[t]));
+    std::sort(found[t].begin(), found[t].end(), [](const Segment& a, const Segment& b) { return a.area_px > b.area_px; });
+  });
+  std::vector<Segment> segments;
+  segments.reserve(totalSize(found));
+  for (std::vector<Segment>& of_type : found) std::move(of_type.begin(), of_type.end(), std::back_inserter(segments));
   return segments;
 }
 }  // namespace brick_pose

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include <opencv2/imgproc.hpp>
+
 namespace brick_pose
 {
 Segment segmentFromMask(const cv::Mat& mask_px, const cv::Rect& box_px, const cv::Mat& depth_m,
@@ -26,5 +28,13 @@ Segment segmentFromMask(const cv::Mat& mask_px, const cv::Rect& box_px, const cv
     }
   }
   return segment;
+}
+
+Segment croppedSegmentFromMask(const cv::Mat& mask_px, const cv::Rect& box_px, const cv::Mat& depth_m,
+                               const std::string& type_name)
+{
+  const cv::Rect used = cv::boundingRect(mask_px);  // of the non-zero pixels
+  if (used.area() == 0) return segmentFromMask(mask_px, box_px, depth_m, type_name);
+  return segmentFromMask(mask_px(used).clone(), used + box_px.tl(), depth_m, type_name);
 }
 }  // namespace brick_pose
