@@ -42,10 +42,10 @@ struct Rendered
   RgbdFrame frame;
 };
 
-Rendered render(const sim::Scene& scene)
+Rendered render(const sim::Scene& scene, const sim::SensorModel& sensor = sim::SensorModel(), std::uint64_t seed = 5)
 {
   Rendered rendered;
-  rendered.synthetic = sim::SyntheticRig(PinholeCamera::d415Color1280x720(), sim::SensorModel()).render(scene, 5);
+  rendered.synthetic = sim::SyntheticRig(PinholeCamera::d415Color1280x720(), sensor).render(scene, seed);
   FrameHeader header;
   header.stamp_ns = 1;
   rendered.frame = makeRgbdFrame(rendered.synthetic.rgb, rendered.synthetic.depth_mm, rendered.synthetic.camera, header);
@@ -370,17 +370,13 @@ std::vector<std::string> falseCompleteOnBenchFrame(sim::SceneKind kind, const Br
   const sim::Scene scene = sim::SceneGenerator(catalogue, sim::SceneParams::defaultsFor(kind)).generate(seed);
   sim::SensorModel sensor = sim::SensorModel::d4xx();
   sensor.lighting = lighting;
-  const sim::SyntheticFrame synthetic =
-      sim::SyntheticRig(PinholeCamera::d415Color1280x720(), sensor).render(scene, seed);
-  FrameHeader header;
-  header.stamp_ns = 1;
-  const RgbdFrame frame = makeRgbdFrame(synthetic.rgb, synthetic.depth_mm, synthetic.camera, header);
+  const Rendered rendered = render(scene, sensor, seed);
   FrontEndParams params;
   params.mode = mode;
   params.roi.up_direction = worldUpInCamera(scene);
-  const FrontEndResult result = FrontEnd(catalogue, params).process(frame);
+  const FrontEndResult result = FrontEnd(catalogue, params).process(rendered.frame);
   const eval::FrameMatch match = eval::matchCandidates(
-      result.candidates, eval::rigSceneTruth(synthetic, worldUpInCamera(scene)), synthetic.camera);
+      result.candidates, eval::rigSceneTruth(rendered.synthetic, params.roi.up_direction), rendered.synthetic.camera);
   std::vector<std::string> false_complete;
   for (std::size_t i = 0; i < match.candidates.size(); ++i)
     if (match.candidates[i].false_complete)

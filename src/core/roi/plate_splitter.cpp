@@ -264,27 +264,15 @@ std::vector<Segment> splitAtDepthSteps(const RgbdFrame& frame, const Segment& se
   std::sort(kept.begin(), kept.end(), [&](int a, int b) { return areas[a] > areas[b]; });
 
   // Each part boxed tightly (scanning only its own box): the plates of a
-  // pile are small parts of the segment that joined them.
+  // pile are small parts of the segment that joined them. Labelled pixels
+  // all have depth, so the part's area and indices are its label's.
   std::vector<Segment> parts;
   parts.reserve(kept.size());  // a growing vector would copy the segments
-  const int width = frame.width_px();
   for (const int label : kept)
   {
     const Extent& extent = extents[label];
     const cv::Rect own(extent.x0, extent.y0, extent.x1 - extent.x0 + 1, extent.y1 - extent.y0 + 1);
-    Segment part;
-    part.type_name = segment.type_name;
-    part.bounding_box_px = own + box.tl();
-    part.mask = labels(own) == label;
-    part.area_px = areas[label];
-    part.pixel_indices.reserve(static_cast<std::size_t>(areas[label]));
-    for (int y = own.y; y < own.br().y; ++y)
-    {
-      const int* label_row = labels.ptr<int>(y);
-      for (int x = own.x; x < own.br().x; ++x)
-        if (label_row[x] == label) part.pixel_indices.push_back((y + box.y) * width + x + box.x);
-    }
-    parts.push_back(std::move(part));
+    parts.push_back(segmentFromMask(labels(own) == label, own + box.tl(), frame.depth_m, segment.type_name));
   }
   return parts;
 }
