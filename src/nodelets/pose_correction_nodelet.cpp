@@ -199,6 +199,11 @@ private:
     detections->cloud_ms = timings.cloud.total();
     detections->roi_ms = timings.roi_ms;
     detections->registration_ms = registrations.registration_ms;
+    const CandidatesMessage& front_end = *registrations.candidates;
+    detections->front_end_reused = front_end.front_end_reused;
+    if (front_end.front_end_reused)
+      detections->front_end_age_s =
+          static_cast<double>(front_end.frame->frame.stamp_ns - front_end.keyframe_stamp_ns) * 1e-9;
     std::vector<TrackerObservation> observations;
     for (const BrickPoseEstimate& estimate : estimates) observations.push_back({estimate.type_name, estimate.pose});
     const std::vector<TrackedBrick> tracked = tracker_.update(observations, registrations.header.stamp.toSec());

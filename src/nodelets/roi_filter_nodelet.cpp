@@ -5,7 +5,9 @@
 // in-process. What it drops is counted by reason in its summary line and
 // /diagnostics, and listed one by one at debug level. `debug_image` shows
 // the quads, T1/T2 and the dropped segments, and `debug_cloud` the accepted
-// segments' points; both are made only when someone subscribes.
+// segments' points; both are made only when someone subscribes. Segments
+// that are a keyframe's (nothing in view changed) get the keyframe's
+// candidates again, filtered once.
 
 #include <cv_bridge/cv_bridge.h>
 #include <pcl_conversions/pcl_conversions.h>
@@ -42,10 +44,9 @@ private:
     auto message = outputFor<CandidatesMessage>(*segments);
     message->frame = segments->frame;
     message->segments = segments;
-    message->front_end.timings.segmentation_ms = segments->segmentation_ms;
     try
     {
-      front_end_->filterSegments(frame.frame, segments->segments, message->front_end);
+      message->front_end = filtered(segments->keyframe ? segments->keyframe : segments);
     }
     catch (const InputError& e)
     {
@@ -54,6 +55,15 @@ private:
       return;
     }
     const double roi_ms = millisecondsSince(start);
+    if (segments->keyframe)
+    {
+      message->front_end_reused = true;
+      message->keyframe_stamp_ns = segments->keyframe->frame->frame.stamp_ns;
+      // This frame's own cost: the scene comparison and the copy.
+      message->front_end.timings = FrontEndTimings();
+      message->front_end.timings.roi_ms = roi_ms;
+    }
+    message->front_end.timings.segmentation_ms = segments->segmentation_ms;
     message->front_end.timings.total_ms = segments->segmentation_ms + roi_ms;
     account(frame, *message);
     candidates_publisher_.publish(CandidatesMessageConstPtr(message));
@@ -64,6 +74,18 @@ private:
       debug_image_publisher_.publish(
           cv_bridge::CvImage(segments->header, "rgb8", drawCandidateOverlay(frame.frame.rgb, message->front_end))
               .toImageMsg());
+  }
+
+  /// The candidates of `keyframe`'s segments (in its own frame): filtered
+  /// once, then the same result again while the scene stays unchanged.
+  FrontEndResult filtered(const SegmentsMessageConstPtr& keyframe)
+  {
+    if (keyframe == last_keyframe_) return last_result_;
+    FrontEndResult result;
+    front_end_->filterSegments(keyframe->frame->frame, keyframe->segments, result);
+    last_keyframe_ = keyframe;
+    last_result_ = result;
+    return result;
   }
 
   /// Counts for the summary line; each rejection, with its own size and
@@ -96,6 +118,8 @@ private:
   }
 
   std::unique_ptr<FrontEnd> front_end_;
+  SegmentsMessageConstPtr last_keyframe_;
+  FrontEndResult last_result_;
   ros::Subscriber segments_subscriber_;
   ros::Publisher candidates_publisher_;
   ros::Publisher debug_image_publisher_;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "brick_pose/catalogue/brick_catalogue.h"
+#include "brick_pose/frame/scene_change.h"
 #include "brick_pose/common/param_parsing.h"
 #include "brick_pose/pose/brick_pose_estimator.h"
 #include "brick_pose/pose/brick_tracker.h"
@@ -42,6 +43,26 @@ struct RegistrationStageParams
 
   void validate() const;
 };
+
+/// Reusing a static scene's front end (stages 2-3): while a frame shows
+/// nothing changed since the keyframe (the last frame the front end ran
+/// on), the keyframe's segments and candidates stand for it.
+struct FrontEndReuseParams
+{
+  bool enabled = true;
+  /// The front end runs again at least this often on a static scene, so a
+  /// change below the test's sensitivity (a brick creeping by a few
+  /// millimetres with nothing else in view changing) is measured within
+  /// this time. 0: only on a change.
+  double keyframe_max_age_s = 2.0;
+  SceneChangeParams change;
+
+  void validate() const;  ///< Throws ConfigError naming the field.
+};
+
+/// `reuse_unchanged_frames`, `keyframe_max_age_s`, `scene_change_depth_sigmas`,
+/// `scene_change_step_fraction`, `scene_change_colour_levels`, `scene_change_max_blocks`.
+FrontEndReuseParams frontEndReuseParamsFrom(const ParamLookup& lookup);
 
 /// `track_match_distance_m`, `track_match_angle_deg`, `track_forget_after_s`,
 /// `pose_smoothing_weight` (1: off).

@@ -46,6 +46,10 @@ struct SegmentsMessage
   FrameMessageConstPtr frame;
   std::vector<Segment> segments;
   double segmentation_ms = 0.0;
+  /// Set when nothing in view changed since the keyframe (the last frame the
+  /// front end ran on): `segments` is then empty, and the keyframe's, of the
+  /// keyframe's frame, stand for this frame.
+  boost::shared_ptr<const SegmentsMessage> keyframe;
 };
 using SegmentsMessageConstPtr = boost::shared_ptr<const SegmentsMessage>;
 
@@ -56,6 +60,10 @@ struct CandidatesMessage
   FrameMessageConstPtr frame;
   SegmentsMessageConstPtr segments;
   FrontEndResult front_end;
+  /// The candidates are the keyframe's, reused (see SegmentsMessage::keyframe);
+  /// keyframe_stamp_ns is the stamp of the frame they were measured in.
+  bool front_end_reused = false;
+  std::int64_t keyframe_stamp_ns = 0;
 };
 using CandidatesMessageConstPtr = boost::shared_ptr<const CandidatesMessage>;
 
@@ -80,6 +88,6 @@ using RegistrationsMessageConstPtr = boost::shared_ptr<const RegistrationsMessag
 }  // namespace brick_pose
 
 BRICK_POSE_INPROCESS_MESSAGE(brick_pose::FrameMessage, "Frame", "a9ec6ff9696138c60c58099cbb669f7f")
-BRICK_POSE_INPROCESS_MESSAGE(brick_pose::SegmentsMessage, "Segments", "134bbee6f82322accbf9194376569001")
-BRICK_POSE_INPROCESS_MESSAGE(brick_pose::CandidatesMessage, "Candidates", "7d2d53592db0d7aa2c9c4226908f7e74")
+BRICK_POSE_INPROCESS_MESSAGE(brick_pose::SegmentsMessage, "Segments", "134bbee6f82322accbf9194376569002")
+BRICK_POSE_INPROCESS_MESSAGE(brick_pose::CandidatesMessage, "Candidates", "7d2d53592db0d7aa2c9c4226908f7e75")
 BRICK_POSE_INPROCESS_MESSAGE(brick_pose::RegistrationsMessage, "Registrations", "3659e75aded1e6359f4cbd369b1d23f8")

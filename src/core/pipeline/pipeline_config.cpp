@@ -19,8 +19,25 @@ void RegistrationStageParams::validate() const
   check.require(max_frame_registration_ms > 0.0, "max_frame_registration_ms", "must be > 0");
 }
 
+void FrontEndReuseParams::validate() const
+{
+  const ParamCheck check("pipeline");
+  check.require(keyframe_max_age_s >= 0.0, "keyframe_max_age_s", "must be >= 0", keyframe_max_age_s);
+  change.validate();
+}
+
 namespace
 {
+ParamBindings frontEndReuseBindings(FrontEndReuseParams& params)
+{
+  return {{"reuse_unchanged_frames", &params.enabled},
+          {"keyframe_max_age_s", &params.keyframe_max_age_s},
+          {"scene_change_depth_sigmas", &params.change.depth_change_sigmas},
+          {"scene_change_step_fraction", &params.change.step_fraction},
+          {"scene_change_colour_levels", &params.change.colour_change_levels},
+          {"scene_change_max_blocks", &params.change.max_changed_blocks}};
+}
+
 ParamBindings stageBindings(StageParams& params)
 {
   return {{"max_latency_ms", &params.max_latency_ms},
@@ -136,6 +153,11 @@ RegistrationStageParams registrationStageParamsFrom(const ParamLookup& lookup)
 
 BrickTrackerParams trackerParamsFrom(const ParamLookup& lookup) { return readValidated(lookup, trackerBindings); }
 
+FrontEndReuseParams frontEndReuseParamsFrom(const ParamLookup& lookup)
+{
+  return readValidated(lookup, frontEndReuseBindings);
+}
+
 TrackedPoseParams trackedPoseParamsFrom(const ParamLookup& lookup)
 {
   return readValidated(lookup, trackedPoseBindings);
@@ -185,6 +207,7 @@ std::map<std::string, std::string> pipelineParamsInEffect(const ParamLookup& loo
   RegistrationStageParams registration = registrationStageParamsFrom(lookup);
   BrickTrackerParams tracker = trackerParamsFrom(lookup);
   TrackedPoseParams tracked = trackedPoseParamsFrom(lookup);
+  FrontEndReuseParams reuse = frontEndReuseParamsFrom(lookup);
   std::map<std::string, std::string> effect = {
       {"mode", toString(front_end.mode)},
       {"seed", std::to_string(estimator.super4pcs.seed)},
@@ -200,6 +223,7 @@ std::map<std::string, std::string> pipelineParamsInEffect(const ParamLookup& loo
   insertAll(effect, boundValues(registrationStageBindings(registration)));
   insertAll(effect, boundValues(trackerBindings(tracker)));
   insertAll(effect, boundValues(trackedPoseBindings(tracked)));
+  insertAll(effect, boundValues(frontEndReuseBindings(reuse)));
   return effect;
 }
 }  // namespace brick_pose
