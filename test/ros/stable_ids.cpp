@@ -10,29 +10,14 @@
 
 #include "brick_pose/BrickDetectionArray.h"
 #include "brick_pose/BrickTruthArray.h"
-#include "brick_pose/ros/conversions.h"
+#include "truth_matching.h"
 
 namespace
 {
-using brick_pose::ros_conversions::fromPose;
+using brick_pose_test::truthBrickOf;
 
 constexpr int kFrames = 300;
 constexpr std::size_t kMinBricks = 6;
-
-/// The ground-truth brick whose top face holds a detection's centre (within
-/// 3 cm of its plane, inside the face); -1 when none does.
-int truthBrickOf(const brick_pose::BrickTruthArray& truth, const brick_pose::BrickDetection& detection)
-{
-  const Eigen::Vector3d centre = fromPose(detection.pose.pose).translation();
-  for (const brick_pose::BrickTruth& brick : truth.bricks)
-  {
-    const Eigen::Vector3d in_brick = fromPose(brick.pose).inverse() * centre;
-    if (brick.type == detection.type && std::abs(in_brick.z()) < 0.03 &&
-        std::abs(in_brick.x()) < 0.5 * brick.dimensions.x && std::abs(in_brick.y()) < 0.5 * brick.dimensions.y)
-      return brick.instance_id;
-  }
-  return -1;
-}
 
 class IdentityWatch
 {
