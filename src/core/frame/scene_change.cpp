@@ -28,23 +28,42 @@ void SceneChangeParams::validate() const
 
 namespace
 {
-/// Running sums of one block.
+/// Running sums of one block: integers for colour (64 x 255 x 3 fits), a
+/// float for depth (64 values near one depth).
 struct BlockSums
 {
-  double depth_m = 0.0;
+  float depth_m = 0.0f;
   int valid = 0;
   int pixels = 0;
-  double rgb[3] = {0.0, 0.0, 0.0};
+  int rgb[3] = {0, 0, 0};
 };
 
 SceneSignature::Block blockOf(const BlockSums& sums)
 {
   SceneSignature::Block block;
   if (sums.pixels == 0) return block;
-  if (sums.valid > 0) block.mean_depth_m = static_cast<float>(sums.depth_m / sums.valid);
+  if (sums.valid > 0) block.mean_depth_m = sums.depth_m / static_cast<float>(sums.valid);
   block.valid_fraction = static_cast<float>(sums.valid) / static_cast<float>(sums.pixels);
-  for (int c = 0; c < 3; ++c) block.mean_rgb[c] = static_cast<float>(sums.rgb[c] / sums.pixels);
+  for (int c = 0; c < 3; ++c) block.mean_rgb[c] = static_cast<float>(sums.rgb[c]) / static_cast<float>(sums.pixels);
   return block;
+}
+
+/// Adds pixels [u_begin, u_end) of one row to `sums`.
+void addRow(const float* depth, const unsigned char* rgb, int u_begin, int u_end, BlockSums& sums)
+{
+  sums.pixels += u_end - u_begin;
+  for (int u = u_begin; u < u_end; ++u)
+  {
+    sums.rgb[0] += rgb[3 * u];
+    sums.rgb[1] += rgb[3 * u + 1];
+    sums.rgb[2] += rgb[3 * u + 2];
+    // NaN (a hole) fails the comparison.
+    if (depth[u] > 0.0f)
+    {
+      sums.depth_m += depth[u];
+      ++sums.valid;
+    }
+  }
 }
 }  // namespace
 
@@ -53,33 +72,26 @@ SceneSignature SceneSignature::of(const RgbdFrame& frame, const SceneChangeParam
   if (frame.depth_m.type() != CV_32FC1 || frame.rgb.type() != CV_8UC3 || frame.depth_m.size() != frame.rgb.size())
     throw InputError("scene signature: needs CV_32FC1 depth and CV_8UC3 colour of one size");
   SceneSignature signature;
+  const int block_px = params.block_px;
   signature.width_px_ = frame.depth_m.cols;
   signature.height_px_ = frame.depth_m.rows;
-  signature.block_px_ = params.block_px;
-  signature.blocks_per_row_ = (signature.width_px_ + params.block_px - 1) / params.block_px;
+  signature.block_px_ = block_px;
+  signature.blocks_per_row_ = (signature.width_px_ + block_px - 1) / block_px;
   signature.up_in_camera_ = frame.up_in_camera;
-  const int block_rows = (signature.height_px_ + params.block_px - 1) / params.block_px;
+  const int block_rows = (signature.height_px_ + block_px - 1) / block_px;
   signature.blocks_.reserve(static_cast<std::size_t>(block_rows * signature.blocks_per_row_));
   std::vector<BlockSums> row_sums(static_cast<std::size_t>(signature.blocks_per_row_));
   for (int block_row = 0; block_row < block_rows; ++block_row)
   {
     std::fill(row_sums.begin(), row_sums.end(), BlockSums());
-    const int v_end = std::min(signature.height_px_, (block_row + 1) * params.block_px);
-    for (int v = block_row * params.block_px; v < v_end; ++v)
+    const int v_end = std::min(signature.height_px_, (block_row + 1) * block_px);
+    for (int v = block_row * block_px; v < v_end; ++v)
     {
       const float* depth = frame.depth_m.ptr<float>(v);
       const unsigned char* rgb = frame.rgb.ptr<unsigned char>(v);
-      for (int u = 0; u < signature.width_px_; ++u)
-      {
-        BlockSums& sums = row_sums[static_cast<std::size_t>(u / params.block_px)];
-        ++sums.pixels;
-        for (int c = 0; c < 3; ++c) sums.rgb[c] += rgb[3 * u + c];
-        if (std::isfinite(depth[u]) && depth[u] > 0.0f)
-        {
-          sums.depth_m += depth[u];
-          ++sums.valid;
-        }
-      }
+      for (int column = 0; column < signature.blocks_per_row_; ++column)
+        addRow(depth, rgb, column * block_px, std::min(signature.width_px_, (column + 1) * block_px),
+               row_sums[static_cast<std::size_t>(column)]);
     }
     for (const BlockSums& sums : row_sums) signature.blocks_.push_back(blockOf(sums));
   }
