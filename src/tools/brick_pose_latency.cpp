@@ -32,6 +32,8 @@ struct Samples
   std::vector<double> bricks, tracked;
   int frames_with_bricks = 0;
   int camera_frames = 0;
+  /// Frames whose front end was the keyframe's (nothing in view changed).
+  int reused_frames = 0;
 
   void add(const brick_pose::BrickDetectionArray& message)
   {
@@ -48,6 +50,7 @@ struct Samples
     for (const auto& detection : message.detections) from_previous += detection.pose_source == "tracked" ? 1 : 0;
     tracked.push_back(from_previous);
     if (!message.detections.empty()) ++frames_with_bricks;
+    if (message.front_end_reused) ++reused_frames;
   }
 };
 
@@ -128,19 +131,23 @@ int main(int argc, char** argv)
   std::printf("frames %zu (%.1f Hz of a %.1f Hz camera), with bricks %d, bricks per frame %.1f (%.1f tracked)\n",
               samples.latency_ms.size(), detection_hz, camera_hz, samples.frames_with_bricks, mean(samples.bricks),
               mean(samples.tracked));
-  std::printf("latency ms: p50 %.1f p95 %.1f\n", percentile(samples.latency_ms, 0.5),
-              percentile(samples.latency_ms, 0.95));
+  const double reused_fraction =
+      samples.latency_ms.empty() ? 0.0 : static_cast<double>(samples.reused_frames) / samples.latency_ms.size();
+  std::printf("latency ms: p50 %.1f p95 %.1f p99 %.1f max %.1f; front end reused (scene unchanged) in %.0f %% of frames\n",
+              percentile(samples.latency_ms, 0.5), percentile(samples.latency_ms, 0.95),
+              percentile(samples.latency_ms, 0.99), percentile(samples.latency_ms, 1.0), 100.0 * reused_fraction);
   printProfile(samples);
   std::printf("service: %d calls, %d answered with a pose, p95 %.1f ms\n", calls, answered, percentile(call_ms, 0.95));
   const char* l = options.label.c_str();
   std::printf("{\"%slatency_p50_ms\": %.2f, \"%slatency_p95_ms\": %.2f, \"%srate_hz\": %.2f, \"%scamera_rate_hz\": %.2f, "
               "\"%sbricks_mean\": %.2f, \"%stracked_mean\": %.2f, \"%sfrontend_p50_ms\": %.2f, "
               "\"%sregistration_p50_ms\": %.2f, \"%sservice_calls\": %d, \"%sservice_answered\": %d, "
-              "\"%sservice_p95_ms\": %.2f}\n",
+              "\"%sservice_p95_ms\": %.2f, \"%slatency_max_ms\": %.2f, \"%sreused_fraction\": %.3f}\n",
               l, percentile(samples.latency_ms, 0.5), l, percentile(samples.latency_ms, 0.95), l, detection_hz, l,
               camera_hz, l, mean(samples.bricks), l, mean(samples.tracked), l,
               percentile(samples.segmentation_ms, 0.5) + percentile(samples.cloud_ms, 0.5) +
                   percentile(samples.roi_ms, 0.5),
-              l, percentile(samples.registration_ms, 0.5), l, calls, l, answered, l, percentile(call_ms, 0.95));
+              l, percentile(samples.registration_ms, 0.5), l, calls, l, answered, l, percentile(call_ms, 0.95), l,
+              percentile(samples.latency_ms, 1.0), l, reused_fraction);
   return samples.latency_ms.empty() ? 1 : 0;
 }
