@@ -6,6 +6,7 @@
 #include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/sim/box_layouts.h"
+#include "brick_pose/sim/cuboid_overlap.h"
 #include "brick_pose/sim/fast_random.h"
 
 namespace brick_pose
@@ -180,7 +181,12 @@ private:
         const Eigen::Vector3d local(x, y, (layer + 1) * type.height_m);
         const Eigen::Vector3d world = Eigen::AngleAxisd(pile_yaw, Eigen::Vector3d::UnitZ()) * local;
         const double yaw = pile_yaw + random_.uniform(-2.0, 2.0) * kDegToRad;
-        bricks.push_back({type, brickPose(world, yaw)});
+        PlacedBrick brick{type, brickPose(world, yaw)};
+        // Rows go up along the pile's y: a row that reached into the one
+        // before is pushed on, as the bricks would push each other.
+        if (row > 0)
+          moveClearOf(brick, {bricks.back()}, Eigen::AngleAxisd(pile_yaw, Eigen::Vector3d::UnitZ()) * Eigen::Vector3d::UnitY());
+        bricks.push_back(brick);
       }
     return bricks;
   }
@@ -201,6 +207,8 @@ private:
       const double tilt_rad = support > 0.0 ? random_.uniform(0.0, params_.max_tilt_deg) * kDegToRad : 0.0;
       brick.world_T_brick = brickPose(drop, yaw_rad, randomHorizontalAxis(), tilt_rad);
       restBrickOn(brick, supportHeight(brick, bricks));
+      // The support samples can miss a neighbour's corner: never inside it.
+      liftClearOf(brick, bricks);
       bricks.push_back(brick);
     }
     return bricks;
