@@ -69,10 +69,10 @@ void moveClearOf(PlacedBrick& brick, const std::vector<PlacedBrick>& placed, con
   constexpr double kMinStepM = 0.001;
   for (int step = 0; step < kMaxSteps; ++step)
   {
-    double deepest_m = 0.0;
+    double deepest_m = -std::numeric_limits<double>::infinity();
     for (const PlacedBrick& other : placed) deepest_m = std::max(deepest_m, interpenetrationM(brick, other));
     if (deepest_m <= tolerance_m) return;
-    brick.world_T_brick.translation() += std::max(deepest_m, kMinStepM) * direction;
+    brick.world_T_brick.translation() += std::max(deepest_m - tolerance_m, kMinStepM) * direction;
   }
 }
 }  // namespace sim

@@ -183,9 +183,11 @@ private:
         const double yaw = pile_yaw + random_.uniform(-2.0, 2.0) * kDegToRad;
         PlacedBrick brick{type, brickPose(world, yaw)};
         // Rows go up along the pile's y: a row that reached into the one
-        // before is pushed on, as the bricks would push each other.
-        if (row > 0)
-          moveClearOf(brick, {bricks.back()}, Eigen::AngleAxisd(pile_yaw, Eigen::Vector3d::UnitZ()) * Eigen::Vector3d::UnitY());
+        // before (a long brick's yaw jitter) is moved on until the pile's
+        // gap lies between them again.
+        if (row > 0 && interpenetrationM(brick, bricks.back()) > 0.0)
+          moveClearOf(brick, {bricks.back()}, Eigen::AngleAxisd(pile_yaw, Eigen::Vector3d::UnitZ()) * Eigen::Vector3d::UnitY(),
+                      -gap_m);
         bricks.push_back(brick);
       }
     return bricks;

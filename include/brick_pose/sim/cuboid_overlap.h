@@ -21,7 +21,8 @@ namespace sim
 double interpenetrationM(const PlacedBrick& a, const PlacedBrick& b);
 
 /// Moves `brick` along the unit `direction` until it interpenetrates none of
-/// `placed` by more than `tolerance_m`.
+/// `placed` by more than `tolerance_m` (a negative tolerance: until that far
+/// apart).
 void moveClearOf(PlacedBrick& brick, const std::vector<PlacedBrick>& placed, const Eigen::Vector3d& direction,
                  double tolerance_m = 0.0005);
 
