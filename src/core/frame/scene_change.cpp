@@ -17,11 +17,10 @@ void SceneChangeParams::validate() const
   check.require(depth_change_sigmas > 0.0, "depth_change_sigmas", "must be > 0", depth_change_sigmas);
   check.require(min_depth_change_m > 0.0, "min_depth_change_m", "must be > 0", min_depth_change_m);
   check.inRange(step_fraction, 0.0, 1.0, "step_fraction");
-  check.require(edge_depth_change_sigmas >= depth_change_sigmas, "edge_depth_change_sigmas",
-                "must be >= depth_change_sigmas", edge_depth_change_sigmas);
   check.require(colour_change_levels > 0.0, "colour_change_levels", "must be > 0", colour_change_levels);
   check.inRange(valid_fraction_change, 0.0, 1.0, "valid_fraction_change");
   check.inRange(min_valid_fraction, 0.0, 1.0, "min_valid_fraction");
+  check.inRange(full_valid_fraction, min_valid_fraction, 1.0, "full_valid_fraction");
   check.require(max_changed_blocks >= 0, "max_changed_blocks", "must be >= 0", max_changed_blocks);
   check.require(max_up_change_deg > 0.0, "max_up_change_deg", "must be > 0", max_up_change_deg);
 }
@@ -120,10 +119,28 @@ bool hasDepth(const SceneSignature::Block& block, const SceneChangeParams& param
   return block.valid_fraction >= params.min_valid_fraction;
 }
 
+/// Whether block `index`'s mean depth means anything from frame to frame:
+/// not when it has holes of its own or lies next to a block without depth
+/// (a stereo shadow, a grazing surface). Its mean is then over a flickering
+/// subset of flying pixels between a near and a far surface; its valid
+/// fraction and colour still count.
+bool depthComparable(const SceneSignature& signature, std::size_t index, const SceneSignature::Block& now,
+                     const SceneChangeParams& params)
+{
+  const SceneSignature::Block& block = signature.blocks()[index];
+  if (std::min(block.valid_fraction, now.valid_fraction) < params.full_valid_fraction) return false;
+  const int per_row = signature.blocksPerRow();
+  const int rows = static_cast<int>(signature.blocks().size()) / per_row;
+  const int row = static_cast<int>(index) / per_row, column = static_cast<int>(index) % per_row;
+  for (int r = std::max(0, row - 1); r <= std::min(rows - 1, row + 1); ++r)
+    for (int c = std::max(0, column - 1); c <= std::min(per_row - 1, column + 1); ++c)
+      if (!hasDepth(signature.blocks()[static_cast<std::size_t>(r * per_row + c)], params)) return false;
+  return true;
+}
+
 /// How far block `index` of `signature` may move in mean depth without a
-/// change. Next to a depth step its mean holds flying pixels whose share
-/// flickers, so it may move by a fraction of the step; next to a hole, by
-/// edge_depth_change_sigmas.
+/// change: the stereo noise of its depth, or next to a depth step a
+/// fraction of the step (the step's flying pixels flicker).
 double allowedDepthChangeM(const SceneSignature& signature, std::size_t index, const SceneChangeParams& params)
 {
   const int per_row = signature.blocksPerRow();
@@ -136,10 +153,7 @@ double allowedDepthChangeM(const SceneSignature& signature, std::size_t index, c
     for (int c = std::max(0, column - 1); c <= std::min(per_row - 1, column + 1); ++c)
     {
       const SceneSignature::Block& neighbour = signature.blocks()[static_cast<std::size_t>(r * per_row + c)];
-      if (!hasDepth(neighbour, params))
-        allowed_m = std::max(allowed_m, params.edge_depth_change_sigmas * sigma_m);
-      else
-        allowed_m = std::max(allowed_m, params.step_fraction * std::abs(neighbour.mean_depth_m - depth_m));
+      allowed_m = std::max(allowed_m, params.step_fraction * std::abs(neighbour.mean_depth_m - depth_m));
     }
   return allowed_m;
 }
@@ -174,7 +188,7 @@ SceneChange compareScenes(const SceneSignature& keyframe, const SceneSignature& 
       changed = true;
       ++fraction_blocks;
     }
-    else if (hasDepth(after, params) && hasDepth(before, params))
+    else if (depthComparable(keyframe, i, after, params))
     {
       const double moved_m = std::abs(static_cast<double>(after.mean_depth_m) - before.mean_depth_m);
       change.max_depth_change_m = std::max(change.max_depth_change_m, moved_m);
