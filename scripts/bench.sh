@@ -59,5 +59,7 @@ run_latency pile "${pile[@]}" seed:=8
 run_latency pile_848 "${pile[@]}" seed:=8 resolution:=848x480
 run_latency pile_12 "${pile[@]}" seed:=3
 run_latency pile_every_frame "${pile[@]}" seed:=8 params:="$no_reuse"
+# Touching rows: 12 red bricks end to end and side by side, no gaps.
+run_latency touching scene:=touching_rows types:=red seed:=14
 rm -f "$no_reuse"
 exit $status
