@@ -31,6 +31,8 @@
 #include <vector>
 
 #include "bench_pose/pose_bench.h"
+#include "brick_pose/common/errors.h"
+#include "brick_pose/sim/d415_modes.h"
 #include "bench_pose/report.h"
 #include "bench_pose/summaries.h"
 #include "common/run_environment.h"
@@ -45,11 +47,13 @@ struct Options
   int frames = 200;
   std::uint64_t seed = 1;
   std::string out_dir;
+  std::string resolution = "1280x720";
+  int max_pile_bricks = sim::SceneParams().max_pile_bricks;
 };
 
 [[noreturn]] void usage(int exit_code)
 {
-  std::cerr << "usage: bench_pose [--frames N] [--seed S] [--out DIR]\n";
+  std::cerr << "usage: bench_pose [--frames N] [--seed S] [--out DIR] [--resolution WxH] [--max-pile-bricks N]\n";
   std::exit(exit_code);
 }
 
@@ -66,6 +70,8 @@ Options parseOptions(int argc, char** argv)
     if (arg == "--frames") options.frames = std::max(1, std::atoi(value.c_str()));
     else if (arg == "--seed") options.seed = std::strtoull(value.c_str(), nullptr, 10);
     else if (arg == "--out") options.out_dir = value;
+    else if (arg == "--resolution") options.resolution = value;
+    else if (arg == "--max-pile-bricks") options.max_pile_bricks = std::max(2, std::atoi(value.c_str()));
     else usage(2);
   }
   return options;
@@ -80,7 +86,17 @@ int main(int argc, char** argv)
     std::cerr << "bench_pose: cannot create output directory " << options.out_dir << "\n";
     return 1;
   }
-  const PoseBench runner(BrickCatalogue::mbzirc2020());
+  PinholeCamera camera;
+  try
+  {
+    camera = sim::d415ColourMode(options.resolution);
+  }
+  catch (const ConfigError& e)
+  {
+    std::cerr << "bench_pose: " << e.what() << "\n";
+    return 2;
+  }
+  const PoseBench runner(BrickCatalogue::mbzirc2020(), camera, options.max_pile_bricks);
   BenchResults results;
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < options.frames; ++i) runner.runFrame(i, options.seed, results);
@@ -89,7 +105,7 @@ int main(int argc, char** argv)
   const std::vector<MethodSummary> summaries = summariseMethods(results.bricks);
   const RegistrationSummary registration = summariseRegistration(results.bricks);
   const LatencySummary latency = summariseLatency(results);
-  const RunDescription run{options.frames, options.seed};
+  const RunDescription run{options.frames, options.seed, options.resolution, options.max_pile_bricks};
   const std::string table = markdownTable(results, summaries, registration, latency, run);
 
   std::ofstream(options.out_dir + "/pose_table.md") << table;

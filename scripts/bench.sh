@@ -26,6 +26,13 @@ cd "$root"
 run_bench bench_frontend --frames "$frames"
 run_bench bench_registration --frames "$frames"
 run_bench bench_pose --frames "$frames" --out "$results"
+# The same on unorganised piles of up to 12 bricks (issue 14), at two modes.
+for resolution in 1280x720 848x480; do
+  echo "== bench_pose --max-pile-bricks 12 --resolution $resolution"
+  "$bin/bench_pose" --frames "$frames" --max-pile-bricks 12 --resolution "$resolution" --out "$results/piles12_$resolution" 2>&1 |
+    tee "$results/bench_pose_piles12_$resolution.txt"
+  [[ ${PIPESTATUS[0]} -eq 0 ]] || status=1
+done
 run_bench bench_tracking --frames 60 --scenes 6
 
 # End-to-end latency of the running pipeline (frame arrival to tf) at 30 Hz,

@@ -55,10 +55,11 @@ std::optional<BrickRegistration> tryRegister(const BrickPoseEstimator& estimator
 
 }  // namespace
 
-sim::SceneGenerator generatorFor(const BrickCatalogue& catalogue, sim::SceneKind kind)
+sim::SceneGenerator generatorFor(const BrickCatalogue& catalogue, sim::SceneKind kind, int max_pile_bricks)
 {
   sim::SceneParams params;
   params.kind = kind;
+  params.max_pile_bricks = max_pile_bricks;
   params.min_distance_m = 0.6;
   params.max_distance_m = 1.5;
   return sim::SceneGenerator(catalogue, params);

@@ -20,19 +20,21 @@ namespace brick_pose
 namespace pose_bench
 {
 /// The rig's scene generator of one kind at the benchmark's distances.
-sim::SceneGenerator generatorFor(const BrickCatalogue& catalogue, sim::SceneKind kind);
+sim::SceneGenerator generatorFor(const BrickCatalogue& catalogue, sim::SceneKind kind, int max_pile_bricks);
 
 class PoseBench
 {
 public:
-  explicit PoseBench(const BrickCatalogue& catalogue)
-    : catalogue_(catalogue), camera_(PinholeCamera::d415Color1280x720()), front_end_(catalogue)
+  /// `camera`: the D415 mode rendered; `max_pile_bricks`: unorganised piles
+  /// draw 2..this bricks (the rig's default 6; 12 for the piles of issue 14).
+  PoseBench(const BrickCatalogue& catalogue, const PinholeCamera& camera, int max_pile_bricks)
+    : catalogue_(catalogue), camera_(camera), front_end_(catalogue)
   {
     for (const Method method : kMethods) estimators_.emplace_back(catalogue, estimatorParamsFor(method));
     accuracy_registrar_.emplace(catalogue, accuracyRegistrationParams());
     for (const sim::SceneKind kind :
          {sim::SceneKind::kSingle, sim::SceneKind::kOrganisedPile, sim::SceneKind::kUnorganisedPile})
-      generators_.emplace(kind, generatorFor(catalogue, kind));
+      generators_.emplace(kind, generatorFor(catalogue, kind, max_pile_bricks));
   }
 
   void runFrame(int index, std::uint64_t base_seed, BenchResults& results) const;

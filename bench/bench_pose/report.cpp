@@ -114,8 +114,9 @@ std::string markdownTable(const BenchResults& results, const std::vector<MethodS
     record.counted ? ++counted : ++exclusions[record.exclusion];
 
   out << "# Pose accuracy and timing (bench_pose)\n\n";
-  out << run.frames << " synthetic D415 frames (seed " << run.seed
-      << "), 1280x720, 0.6-1.5 m, singles / organised / unorganised piles, normal / sunlight / low_light. "
+  out << run.frames << " synthetic D415 frames (seed " << run.seed << "), " << run.resolution
+      << ", 0.6-1.5 m, singles / organised / unorganised piles (2-" << run.max_pile_bricks
+      << " bricks), normal / sunlight / low_light. "
       << results.candidates << " front-end candidates, " << results.bricks.size()
       << " matched a ground-truth brick, " << counted << " counted (top face >= 60% visible, complete, registered).\n\n";
 

@@ -17,6 +17,8 @@ struct RunDescription
 {
   int frames = 0;
   std::uint64_t seed = 0;
+  std::string resolution = "1280x720";
+  int max_pile_bricks = 6;  ///< unorganised piles draw 2..this
 };
 
 std::string markdownTable(const BenchResults& results, const std::vector<MethodSummary>& summaries,
