@@ -119,6 +119,20 @@ bool hasDepth(const SceneSignature::Block& block, const SceneChangeParams& param
   return block.valid_fraction >= params.min_valid_fraction;
 }
 
+/// Calls `visit` with each block of the 3x3 neighbourhood of block `index`
+/// (itself included) inside the signature; stops early when `visit`
+/// returns false.
+template <typename Visit>
+void forEachNeighbour(const SceneSignature& signature, std::size_t index, Visit visit)
+{
+  const int per_row = signature.blocksPerRow();
+  const int rows = static_cast<int>(signature.blocks().size()) / per_row;
+  const int row = static_cast<int>(index) / per_row, column = static_cast<int>(index) % per_row;
+  for (int r = std::max(0, row - 1); r <= std::min(rows - 1, row + 1); ++r)
+    for (int c = std::max(0, column - 1); c <= std::min(per_row - 1, column + 1); ++c)
+      if (!visit(signature.blocks()[static_cast<std::size_t>(r * per_row + c)])) return;
+}
+
 /// Whether block `index`'s mean depth means anything from frame to frame:
 /// not when it has holes of its own or lies next to a block without depth
 /// (a stereo shadow, a grazing surface). Its mean is then over a flickering
@@ -129,13 +143,12 @@ bool depthComparable(const SceneSignature& signature, std::size_t index, const S
 {
   const SceneSignature::Block& block = signature.blocks()[index];
   if (std::min(block.valid_fraction, now.valid_fraction) < params.full_valid_fraction) return false;
-  const int per_row = signature.blocksPerRow();
-  const int rows = static_cast<int>(signature.blocks().size()) / per_row;
-  const int row = static_cast<int>(index) / per_row, column = static_cast<int>(index) % per_row;
-  for (int r = std::max(0, row - 1); r <= std::min(rows - 1, row + 1); ++r)
-    for (int c = std::max(0, column - 1); c <= std::min(per_row - 1, column + 1); ++c)
-      if (!hasDepth(signature.blocks()[static_cast<std::size_t>(r * per_row + c)], params)) return false;
-  return true;
+  bool all_have_depth = true;
+  forEachNeighbour(signature, index, [&](const SceneSignature::Block& neighbour) {
+    all_have_depth = hasDepth(neighbour, params);
+    return all_have_depth;
+  });
+  return all_have_depth;
 }
 
 /// How far block `index` of `signature` may move in mean depth without a
@@ -143,18 +156,13 @@ bool depthComparable(const SceneSignature& signature, std::size_t index, const S
 /// fraction of the step (the step's flying pixels flicker).
 double allowedDepthChangeM(const SceneSignature& signature, std::size_t index, const SceneChangeParams& params)
 {
-  const int per_row = signature.blocksPerRow();
-  const int rows = static_cast<int>(signature.blocks().size()) / per_row;
-  const int row = static_cast<int>(index) / per_row, column = static_cast<int>(index) % per_row;
   const double depth_m = signature.blocks()[index].mean_depth_m;
   const double sigma_m = params.depth_sigma_at_1m_m * depth_m * depth_m;
   double allowed_m = std::max(params.min_depth_change_m, params.depth_change_sigmas * sigma_m);
-  for (int r = std::max(0, row - 1); r <= std::min(rows - 1, row + 1); ++r)
-    for (int c = std::max(0, column - 1); c <= std::min(per_row - 1, column + 1); ++c)
-    {
-      const SceneSignature::Block& neighbour = signature.blocks()[static_cast<std::size_t>(r * per_row + c)];
-      allowed_m = std::max(allowed_m, params.step_fraction * std::abs(neighbour.mean_depth_m - depth_m));
-    }
+  forEachNeighbour(signature, index, [&](const SceneSignature::Block& neighbour) {
+    allowed_m = std::max(allowed_m, params.step_fraction * std::abs(neighbour.mean_depth_m - depth_m));
+    return true;
+  });
   return allowed_m;
 }
 }  // namespace
