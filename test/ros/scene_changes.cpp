@@ -4,7 +4,6 @@
 // the pile before would not), the first detections of each pile must be
 // measured afresh, and frames in between must reuse the front end.
 
-#include <map>
 #include <mutex>
 
 #include <gtest/gtest.h>
@@ -35,16 +34,15 @@ public:
   void onTruth(const brick_pose::BrickTruthArrayConstPtr& truth)
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    truth_by_stamp_[truth->header.stamp] = truth;
-    while (truth_by_stamp_.size() > 200) truth_by_stamp_.erase(truth_by_stamp_.begin());
+    truths_.add(truth);
   }
 
   void onDetections(const brick_pose::BrickDetectionArrayConstPtr& detections)
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    const auto truth = truth_by_stamp_.find(detections->header.stamp);
-    if (truth == truth_by_stamp_.end() || piles_ > kPiles) return;
-    const double pile = pileKey(*truth->second);
+    const brick_pose::BrickTruthArrayConstPtr truth = truths_.find(detections->header.stamp);
+    if (!truth || piles_ > kPiles) return;
+    const double pile = pileKey(*truth);
     if (piles_ == 0 || pile != current_pile_)
     {
       ++piles_;
@@ -56,14 +54,14 @@ public:
     for (const brick_pose::BrickDetection& detection : detections->detections)
     {
       ++detections_;
-      if (truthBrickOf(*truth->second, detection) < 0) ++unmatched_;
+      if (truthBrickOf(*truth, detection) < 0) ++unmatched_;
     }
   }
 
   int piles() const { std::lock_guard<std::mutex> lock(mutex_); return piles_; }
 
   mutable std::mutex mutex_;
-  std::map<ros::Time, brick_pose::BrickTruthArrayConstPtr> truth_by_stamp_;
+  brick_pose_test::TruthByStamp truths_;
   double current_pile_ = 0.0;
   int piles_ = 0, frames_ = 0, reused_frames_ = 0, reused_on_new_pile_ = 0, detections_ = 0, unmatched_ = 0;
 };

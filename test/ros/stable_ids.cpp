@@ -25,20 +25,19 @@ public:
   void onTruth(const brick_pose::BrickTruthArrayConstPtr& truth)
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    truth_by_stamp_[truth->header.stamp] = truth;
-    while (truth_by_stamp_.size() > 200) truth_by_stamp_.erase(truth_by_stamp_.begin());
+    truths_.add(truth);
   }
 
   void onDetections(const brick_pose::BrickDetectionArrayConstPtr& detections)
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    const auto truth = truth_by_stamp_.find(detections->header.stamp);
-    if (truth == truth_by_stamp_.end() || frames_ >= kFrames) return;
+    const brick_pose::BrickTruthArrayConstPtr truth = truths_.find(detections->header.stamp);
+    if (!truth || frames_ >= kFrames) return;
     ++frames_;
     min_bricks_ = std::min(min_bricks_, detections->detections.size());
     for (const brick_pose::BrickDetection& detection : detections->detections)
     {
-      const int brick = truthBrickOf(*truth->second, detection);
+      const int brick = truthBrickOf(*truth, detection);
       if (brick < 0)
       {
         ++unmatched_;
@@ -54,7 +53,7 @@ public:
   int frames() const { std::lock_guard<std::mutex> lock(mutex_); return frames_; }
 
   mutable std::mutex mutex_;
-  std::map<ros::Time, brick_pose::BrickTruthArrayConstPtr> truth_by_stamp_;
+  brick_pose_test::TruthByStamp truths_;
   std::map<std::string, int> truth_of_frame_;
   std::map<int, std::string> frame_of_truth_;
   int frames_ = 0, frame_swaps_ = 0, renamed_ = 0, unmatched_ = 0;

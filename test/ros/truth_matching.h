@@ -3,6 +3,9 @@
 // for the rostests.
 
 #include <cmath>
+#include <map>
+
+#include <ros/time.h>
 
 #include "brick_pose/BrickDetection.h"
 #include "brick_pose/BrickTruthArray.h"
@@ -25,4 +28,27 @@ inline int truthBrickOf(const brick_pose::BrickTruthArray& truth, const brick_po
   }
   return -1;
 }
+/// The camera's latest ground-truth messages by stamp, for pairing each
+/// detections message with the truth of its own frame. Not locked: the
+/// watch that owns it locks around both calls.
+class TruthByStamp
+{
+public:
+  void add(const brick_pose::BrickTruthArrayConstPtr& truth)
+  {
+    by_stamp_[truth->header.stamp] = truth;
+    while (by_stamp_.size() > kKept) by_stamp_.erase(by_stamp_.begin());
+  }
+
+  /// Null when no truth of that stamp is kept.
+  brick_pose::BrickTruthArrayConstPtr find(const ros::Time& stamp) const
+  {
+    const auto found = by_stamp_.find(stamp);
+    return found == by_stamp_.end() ? nullptr : found->second;
+  }
+
+private:
+  static constexpr std::size_t kKept = 200;  // several seconds at 30 Hz
+  std::map<ros::Time, brick_pose::BrickTruthArrayConstPtr> by_stamp_;
+};
 }  // namespace brick_pose_test
