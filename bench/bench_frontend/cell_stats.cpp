@@ -16,8 +16,8 @@ void append(std::vector<double>& to, const std::vector<double>& from) { to.inser
 
 /// The rejection whose box holds most of a missed top, as the earlier
 /// benchmark named misses (the reason up to its first number).
-std::string missReason(const FrontEndResult& result, const eval::SceneTruth& truth, int face, bool verbose,
-                       const std::string& frame_name)
+std::string missReason(const FrontEndResult& result, const eval::SceneTruth& truth, int face, bool whole,
+                       bool verbose, const std::string& frame_name)
 {
   const eval::FaceTruth& top = truth.faces[static_cast<std::size_t>(face)];
   for (const Rejection& rejection : result.rejections)
@@ -29,8 +29,8 @@ std::string missReason(const FrontEndResult& result, const eval::SceneTruth& tru
     if (inside * 4 > top.visible_px / 3)
     {
       if (verbose)
-        std::fprintf(stderr, "%s: miss %s vis %.2f: %s\n", frame_name.c_str(), top.type.c_str(), top.visible_fraction,
-                     rejection.reason.c_str());
+        std::fprintf(stderr, "%s: miss %s%s vis %.2f: %s\n", frame_name.c_str(), whole ? "whole " : "",
+                     top.type.c_str(), top.visible_fraction, rejection.reason.c_str());
       return rejection.reason.substr(0, rejection.reason.find_first_of("0123456789"));
     }
   }
@@ -118,7 +118,7 @@ void recordFrame(const FrontEndResult& result, double cpu_ms, const eval::SceneT
   }
   for (const eval::TopMatch& top : match.tops)
     if (top.visible_fraction >= match_params.legacy_min_visible_fraction && !top.legacy_found)
-      ++stats.miss_reasons[missReason(result, truth, top.face, verbose, frame_name)];
+      ++stats.miss_reasons[missReason(result, truth, top.face, top.whole_in_view, verbose, frame_name)];
 }
 }  // namespace frontend_bench
 }  // namespace brick_pose

@@ -1,9 +1,13 @@
 #include "bench_frontend/rig_evaluation.h"
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <optional>
 
+#include <opencv2/imgcodecs.hpp>
+
+#include "brick_pose/eval/match_overlay.h"
 #include "brick_pose/eval/rig_truth.h"
 #include "brick_pose/frame/frame_builder.h"
 #include "brick_pose/sim/synthetic_rig.h"
@@ -82,14 +86,16 @@ RigResults runRig(const std::vector<BrickCatalogue>& catalogues, const std::vect
     }
   for (std::size_t m = 0; m < modes.size(); ++m)
   {
-    if (!modes[m].mode) continue;
+    if (!modes[m].mode || !allowedBy(options.only_modes, modes[m].name)) continue;
     for (std::size_t r = 0; r < resolutions.size(); ++r)
     {
+      if (!allowedBy(options.only_resolutions, resolutions[r].label)) continue;
       const PinholeCamera& camera = resolutions[r].camera;
       for (std::size_t i = 0; i < plan.size(); ++i)
       {
         const FrameSpec& spec = plan[i];
         if (results.not_applicable.count({spec.scene_class, m})) continue;
+        if (!allowedBy(options.only_kinds, classes[spec.scene_class].rig_kind)) continue;
         const RenderedFrame rendered = render(*generators[spec.scene_class], classes[spec.scene_class], spec, camera);
         const auto build_start = std::chrono::steady_clock::now();
         const RgbdFrame frame = toRgbd(rendered, camera, static_cast<int>(i));
@@ -108,6 +114,15 @@ RigResults runRig(const std::vector<BrickCatalogue>& catalogues, const std::vect
         recordFrame(result, cpu_ms, truth, camera, match_params, options.verbose, name, frame_stats);
         results.cells[key].merge(frame_stats);
         if (spec.legacy) results.legacy_cells[key].merge(frame_stats);
+        // Pictures of a replayed cell only: the whole run would write thousands.
+        if (!options.overlay_dir.empty() && !options.only_kinds.empty())
+        {
+          const eval::FrameMatch match = eval::matchCandidates(result.candidates, truth, camera, match_params);
+          std::string file = name;
+          std::replace(file.begin(), file.end(), ' ', '_');
+          cv::imwrite(options.overlay_dir + "/" + file + ".png",
+                      eval::drawMatchOverlay(frame.rgb, truth, result.candidates, match, camera));
+        }
       }
     }
   }

@@ -37,7 +37,24 @@ std::optional<SegmentationMode> frontEndMode(const std::string& name)
   }
 }
 
+std::vector<std::string> commaList(const std::string& text)
+{
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (start <= text.size())
+  {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    if (end > start) items.push_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+  return items;
+}
 }  // namespace
+
+bool allowedBy(const std::vector<std::string>& allowed, const std::string& name)
+{
+  return allowed.empty() || std::find(allowed.begin(), allowed.end(), name) != allowed.end();
+}
 
 Options parseOptions(int argc, char** argv)
 {
@@ -55,11 +72,17 @@ Options parseOptions(int argc, char** argv)
     else if (arg == "--no-rig") options.skip_rig = true;
     else if (arg == "--verbose") options.verbose = true;
     else if (arg == "--overlay-dir" && has_value) options.overlay_dir = argv[++i];
+    else if (arg == "--only" && i + 3 < argc)
+    {
+      options.only_kinds = commaList(argv[++i]);
+      options.only_modes = commaList(argv[++i]);
+      options.only_resolutions = commaList(argv[++i]);
+    }
     else
     {
       std::cerr << "usage: bench_frontend [--frames N] [--seed S] [--mosd DIR] [--mosd-catalogue FILE] [--box-catalogue FILE] "
                    "[--no-mosd] "
-                   "[--no-rig] [--verbose] [--overlay-dir DIR]\n";
+                   "[--no-rig] [--verbose] [--overlay-dir DIR] [--only KINDS MODES RESOLUTIONS]\n";
       std::exit(arg == "--help" || arg == "-h" ? 0 : 2);
     }
   }

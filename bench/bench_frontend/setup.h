@@ -36,9 +36,18 @@ struct Options
   bool skip_mosd = false;
   bool skip_rig = false;       ///< Only the real-scene rows (quick look at mOSD).
   bool verbose = false;      ///< Each false positive, false complete and miss on stderr.
-  /// Non-empty: writes <scene>_<mode>.png match overlays of the mOSD rows there.
+  /// Non-empty: writes <scene>_<mode>.png match overlays of the mOSD rows
+  /// there, and with --only one per rig frame run.
   std::string overlay_dir;
+  /// Non-empty: only these rig scene kinds, modes and resolutions are run
+  /// (comma lists, e.g. --only touching_rows colour_free 1280x720), with the
+  /// full run's frame seeds and names, so a cell of the table is replayed
+  /// alone. The tables then cover only what ran.
+  std::vector<std::string> only_kinds, only_modes, only_resolutions;
 };
+
+/// Whether `name` is in `allowed` (an empty list allows every name).
+bool allowedBy(const std::vector<std::string>& allowed, const std::string& name);
 
 /// Throws nothing; prints usage and exits on bad arguments.
 Options parseOptions(int argc, char** argv);

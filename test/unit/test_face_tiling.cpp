@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
 #include "brick_pose/common/errors.h"
 #include "brick_pose/pipeline/front_end.h"
@@ -207,6 +208,92 @@ TEST(FaceTiling, MixedLayerOfAGreenAndTwoRedsIsTiledWithBothSizes)
   EXPECT_EQ(reds, 2);
   EXPECT_EQ(greens, 1);
   EXPECT_LT(worstCornerErrorM(result.candidates, scene), 0.02);
+}
+
+/// Dark print on each plate (a label and two stripes), as on a printed box.
+void printOnPlates(const test::TouchingPlatesScene& scene, RgbdFrame& frame)
+{
+  for (const auto& plate : scene.plates)
+  {
+    const Eigen::Vector2d size = plate.max_m - plate.min_m;
+    auto pixel = [&](double fx, double fy) {
+      const Eigen::Vector2d p = scene.camera.project(
+          scene.toCamera(plate.min_m.x() + fx * size.x(), plate.min_m.y() + fy * size.y()));
+      return cv::Point(static_cast<int>(p.x()), static_cast<int>(p.y()));
+    };
+    cv::rectangle(frame.rgb, pixel(0.2, 0.25), pixel(0.5, 0.75), cv::Scalar(250, 250, 250), cv::FILLED);
+    cv::line(frame.rgb, pixel(0.6, 0.1), pixel(0.6, 0.9), cv::Scalar(20, 20, 20), 3);
+    cv::line(frame.rgb, pixel(0.75, 0.1), pixel(0.75, 0.9), cv::Scalar(20, 20, 20), 3);
+  }
+}
+
+int completeCount(const FrontEndResult& result)
+{
+  int complete = 0;
+  for (const BrickCandidate& c : result.candidates) complete += c.complete ? 1 : 0;
+  return complete;
+}
+
+TEST(FaceTiling, ColourFreeTouchingBricksAreCutAtDarkSeamsAndCompleteWhenPlain)
+{
+  // Three greens side by side: a 0.6 m square that no catalogue top has.
+  // Their seams are closed: no groove (a D4xx smooths it away), only the
+  // dark line of the rounded edges.
+  test::TouchingPlatesScene scene = rowScene(3, 0.6, 0.2);
+  for (auto& plate : scene.plates) plate.rgb = cv::Vec3b(200, 60, 50);
+  scene.line_darkening = 40.0;
+  scene.line_half_width_m = 0.002;  // two rounded edges of 2 mm
+  FrontEndParams params;
+  params.mode = SegmentationMode::kRegionGrowing;
+  const FrontEnd front_end(BrickCatalogue::mbzirc2020(), params);
+  const FrontEndResult seamed = front_end.process(scene.frame());
+  ASSERT_EQ(seamed.candidates.size(), 3u);
+  for (const BrickCandidate& c : seamed.candidates)
+  {
+    EXPECT_EQ(c.type_name, "green");
+    EXPECT_TRUE(c.complete) << c.partial_reason;
+  }
+  EXPECT_LT(worstCornerErrorM(seamed.candidates, scene), 0.015);
+
+  // The same face printed: a line is no seam there. Cut or not, no brick
+  // may claim to be whole.
+  RgbdFrame printed = scene.frame();
+  printOnPlates(scene, printed);
+  const FrontEndResult on_print = front_end.process(printed);
+  EXPECT_EQ(completeCount(on_print), 0);
+  for (const BrickCandidate& c : on_print.candidates) EXPECT_FALSE(c.partial_reason.empty());
+
+  // Nothing seen where they meet: no cut, nothing complete.
+  scene.line_darkening = 0.0;
+  EXPECT_EQ(completeCount(front_end.process(scene.frame())), 0);
+}
+
+TEST(FaceTiling, ColourFreeTilingPrefersTheSizesItsSeamsDraw)
+{
+  // Two rows of two reds end to end (0.6 x 0.4): reds, greens and the
+  // mixed set all tile it; only the reds' cuts all lie on seams.
+  test::TouchingPlatesScene scene = rowScene(1, 0.6, 0.2);
+  const cv::Vec3b plain(200, 60, 50);
+  scene.plates = {{{-0.3, -0.2}, {0.0, 0.0}, plain},
+                  {{0.0, -0.2}, {0.3, 0.0}, plain},
+                  {{-0.3, 0.0}, {0.0, 0.2}, plain},
+                  {{0.0, 0.0}, {0.3, 0.2}, plain}};
+  scene.line_darkening = 40.0;
+  scene.line_half_width_m = 0.002;
+  FrontEndParams params;
+  params.mode = SegmentationMode::kRegionGrowing;
+  const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
+  ASSERT_EQ(result.candidates.size(), 4u);
+  for (const BrickCandidate& c : result.candidates)
+  {
+    EXPECT_EQ(c.type_name, "red");
+    EXPECT_TRUE(c.complete) << c.partial_reason;
+  }
+  // Without the seam across the middle the same face is two greens.
+  scene.plates = {{{-0.3, -0.2}, {0.3, 0.0}, plain}, {{-0.3, 0.0}, {0.3, 0.2}, plain}};
+  const FrontEndResult greens = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
+  ASSERT_EQ(greens.candidates.size(), 2u);
+  for (const BrickCandidate& c : greens.candidates) EXPECT_EQ(c.type_name, "green");
 }
 
 TEST(FaceTiling, ParameterChecks)

@@ -17,6 +17,8 @@
 // tiles rows, grids and the pinwheel patterns of pallets alike.
 
 #include <array>
+#include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -81,6 +83,9 @@ struct FaceTiling
   int cuts = 0;
   int seen_cuts = 0;
   int grooved_cuts = 0;
+  /// The weakest dark (or bright) line along a cut, in grey levels
+  /// (infinity without cuts).
+  double weakest_cut_line = std::numeric_limits<double>::infinity();
 };
 
 /// Tiles `segment` (measured as `measured`: plane and least-area quad) with
@@ -89,4 +94,13 @@ struct FaceTiling
 FaceTiling tileFace(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
                     const std::vector<const BrickType*>& types, double tolerance_m, const FaceTilingParams& params,
                     const EdgeEvidenceParams& evidence_params);
+
+/// The same face tiled with each of `type_sets` in turn (sharing the raster
+/// and the seam evidence, which do not depend on the types), skipping the
+/// sets `wanted` refuses given the tilings made so far; the tilings made,
+/// in order.
+std::vector<FaceTiling> tileFaceEach(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                                     const std::vector<std::vector<const BrickType*>>& type_sets, double tolerance_m,
+                                     const FaceTilingParams& params, const EdgeEvidenceParams& evidence_params,
+                                     const std::function<bool(std::size_t set, const std::vector<FaceTiling>& made)>& wanted);
 }  // namespace brick_pose

@@ -17,6 +17,7 @@
 #include "brick_pose/cloud/cloud_processor.h"
 #include "brick_pose/frame/rgbd_frame.h"
 #include "brick_pose/roi/brick_candidate.h"
+#include "brick_pose/roi/colour_uniformity.h"
 #include "brick_pose/roi/edge_evidence.h"
 #include "brick_pose/roi/face_tiling.h"
 #include "brick_pose/roi/side_faces.h"
@@ -56,6 +57,9 @@ struct RoiFilterParams
   FaceTilingParams tiling;
   /// Side faces below the edges must have the catalogue height.
   SideFaceParams sides;
+  /// Colour-free: whether a tile of a merged face is of one plain colour,
+  /// so that a line along its cut is a seam (see colour_uniformity.h).
+  ColourUniformityParams uniformity;
   PlaneFitParams plane;
   QuadFitParams quad;
   /// The bricks a merged face is cut into are measured on this many threads
@@ -158,6 +162,12 @@ private:
                                  const FrameContext& context, bool seams_required,
                                  CloudProcessingTimings* cloud_timings, FaceTiling* tried = nullptr,
                                  const std::vector<const BrickType*>* only_types = nullptr) const;
+
+  /// Colour-free tiling of a face larger than any brick: each type alone
+  /// (the smallest first), then all together; the finest tiling whose every
+  /// cut is seen (a groove or a line), or none.
+  FaceTiling tileBySeenSeams(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                             const std::vector<const BrickType*>& types) const;
 
   BrickCatalogue catalogue_;
   /// The catalogue's boxes lying on a side or standing on an end, as rivals

@@ -106,6 +106,9 @@ public:
   void setState(int i, int j, std::uint8_t value) { state_[static_cast<std::size_t>(j) * nx_ + i] = value; }
   bool free(int i, int j) const { return inGrid(i, j) && state(i, j) == kFree; }
   int freeCount() const { return static_cast<int>(std::count(state_.begin(), state_.end(), kFree)); }
+  /// Every cell's state, to start another tiling from (see restore()).
+  const std::vector<std::uint8_t>& states() const { return state_; }
+  void restore(const std::vector<std::uint8_t>& states) { state_ = states; }
   /// The cells holding `state` over any rectangle, as the grid is now.
   CellCounts counts(std::uint8_t state) const { return CellCounts(state_, nx_, ny_, state); }
 
@@ -211,7 +214,9 @@ LineEvidence PlaneGrid::lineEvidence(bool constant_s, int arm_px, double on_plan
       if (std::isfinite(low_d)) raw[0][cell] = static_cast<float>(std::min(left_d, right_d) - low_d);
     }
   // Centre each channel on its typical dip (the lowest of a window is
-  // biased) and clip at 4 sigma so flying pixels do not make a seam. The
+  // biased) and clip at 4 sigma so flying pixels do not make a seam, but
+  // never below twice the smallest seam: on a clean face 4 sigma is less
+  // than the smallest seam, and a clipped dark line would never count. The
   // sigma has a floor (a quarter of the smallest seam) for noise-free input.
   for (int channel = 0; channel < 2; ++channel)
   {
@@ -231,7 +236,8 @@ LineEvidence PlaneGrid::lineEvidence(bool constant_s, int arm_px, double on_plan
       {
         const float value = raw[channel][static_cast<std::size_t>(line) * evidence.length + k];
         const bool valid = !std::isnan(value);
-        const double clipped = valid ? std::max(-4.0 * sigma, std::min(4.0 * sigma, value - centre)) : 0.0;
+        const double clip = std::max(4.0 * sigma, 2.0 * sigma_floor[channel]);
+        const double clipped = valid ? std::max(-clip, std::min(clip, value - centre)) : 0.0;
         sums[evidence.at(line, k + 1)] = sums[evidence.at(line, k)] + clipped;
         counts[evidence.at(line, k + 1)] = counts[evidence.at(line, k)] + (valid ? 1 : 0);
       }
@@ -248,16 +254,29 @@ struct CellRect
 class Tiler
 {
 public:
-  Tiler(PlaneGrid& grid, const std::vector<const BrickType*>& types, double tolerance_m,
+  /// The seam evidence along either axis of `grid` (type-independent, so
+  /// shared by the tilers of one face).
+  struct Evidence
+  {
+    LineEvidence along_s, along_t;
+  };
+
+  static Evidence evidenceOf(const PlaneGrid& grid, const FaceTilingParams& params,
+                             const EdgeEvidenceParams& evidence_params)
+  {
+    const std::array<double, 2> floor{{evidence_params.min_groove_m, evidence_params.min_line_contrast}};
+    return {grid.lineEvidence(true, params.seam_arm_px, onPlaneM(grid, evidence_params), floor),
+            grid.lineEvidence(false, params.seam_arm_px, onPlaneM(grid, evidence_params), floor)};
+  }
+
+  Tiler(PlaneGrid& grid, const Evidence& evidence, const std::vector<const BrickType*>& types, double tolerance_m,
         const FaceTilingParams& params, const EdgeEvidenceParams& evidence_params)
     : grid_(grid),
       types_(types),
       params_(params),
       evidence_params_(evidence_params),
-      along_s_(grid.lineEvidence(true, params.seam_arm_px, onPlaneM(grid, evidence_params),
-                                 {evidence_params.min_groove_m, evidence_params.min_line_contrast})),
-      along_t_(grid.lineEvidence(false, params.seam_arm_px, onPlaneM(grid, evidence_params),
-                                 {evidence_params.min_groove_m, evidence_params.min_line_contrast})),
+      along_s_(evidence.along_s),
+      along_t_(evidence.along_t),
       tolerance_cells_(std::max(1, roundToInt(tolerance_m / grid.cellM()))),
       free_(grid.counts(kFree)),
       off_image_(grid.counts(kOffImage))
@@ -595,7 +614,8 @@ private:
   const std::vector<const BrickType*>& types_;
   const FaceTilingParams& params_;
   const EdgeEvidenceParams& evidence_params_;
-  LineEvidence along_s_, along_t_;
+  const LineEvidence& along_s_;
+  const LineEvidence& along_t_;
   int tolerance_cells_;
   CellCounts free_;       ///< untiled cells of the segment, rebuilt as tiles are taken
   CellCounts off_image_;  ///< cells off the image (fixed)
@@ -646,17 +666,15 @@ void FaceTilingParams::validate() const
   check.require(max_tiles >= 1, "max_tiles", "must be >= 1");
 }
 
-FaceTiling tileFace(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
-                    const std::vector<const BrickType*>& types, double tolerance_m, const FaceTilingParams& params,
-                    const EdgeEvidenceParams& evidence_params)
+namespace
+{
+/// The placed tiles as a FaceTiling: corners, cuts, seams confirmed along
+/// each cut, and the tiles' pixels.
+FaceTiling describeTiling(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                          const PlaneGrid& grid, const std::vector<Tiler::Placed>& placed, int segment_cells,
+                          const EdgeEvidenceParams& evidence_params, const FaceTilingParams& params)
 {
   FaceTiling tiling;
-  if (types.empty() || !measured.plane.valid) return tiling;
-  PlaneGrid grid(frame, segment, measured, params.cell_m, params.max_cells);
-  const int segment_cells = grid.freeCount();
-  if (segment_cells == 0) return tiling;
-  Tiler tiler(grid, types, tolerance_m, params, evidence_params);
-  const std::vector<Tiler::Placed> placed = tiler.run();
   tiling.untiled_fraction = static_cast<double>(grid.freeCount()) / segment_cells;
   tiling.tiles.reserve(placed.size());  // a growing vector would copy the tiles' segments
   for (const Tiler::Placed& tile : placed)
@@ -668,14 +686,16 @@ FaceTiling tileFace(const RgbdFrame& frame, const Segment& segment, const BrickC
     face.corners_m = {grid.point(r.i0, r.j1), grid.point(r.i0, r.j0), grid.point(r.i1, r.j0), grid.point(r.i1, r.j1)};
     face.cut = tile.cut;
     std::array<bool, 4> groove = tile.groove;
-    face.seam_seen = tile.seen;
     for (int k = 0; k < 4; ++k)
     {
-      if (!tile.cut[k] || !tile.seen[k]) continue;
-      // The tiler picked this line as the best of several near the nominal
-      // cut, so its own score is the largest of several noisy ones: the
-      // seam must also pass the edge test along the cut itself, whose
-      // standard error comes from the scatter along the line.
+      if (!tile.cut[k]) continue;
+      // Every cut is tested along itself, whether or not the tiler saw a
+      // seam there: the tiler's cell raster samples one pixel per cell and
+      // can miss a line one pixel wide that the profiles across the cut
+      // see. Its own score, the largest of several noisy lines near each
+      // nominal cut, is not trusted either: the seam must pass the edge
+      // test along the cut, whose standard error comes from the scatter
+      // along the line.
       const SeamScore seam = scoreSeam(frame, measured.plane, frame.camera.project(face.corners_m[k]),
                                        frame.camera.project(face.corners_m[(k + 1) % 4]), evidence_params);
       // 1.5x the tiler's strength: its search over the lines near each
@@ -685,6 +705,7 @@ FaceTiling tileFace(const RgbdFrame& frame, const Segment& segment, const BrickC
       const bool confirmed = seam.seen && seam.strength >= 1.5 * params.min_seam_strength;
       face.seam_seen[k] = confirmed;
       groove[k] = groove[k] && confirmed;
+      tiling.weakest_cut_line = std::min(tiling.weakest_cut_line, seam.line_contrast);
     }
     for (int k = 0; k < 4; ++k)
     {
@@ -696,5 +717,40 @@ FaceTiling tileFace(const RgbdFrame& frame, const Segment& segment, const BrickC
     tiling.tiles.push_back(std::move(face));
   }
   return tiling;
+}
+}  // namespace
+
+FaceTiling tileFace(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                    const std::vector<const BrickType*>& types, double tolerance_m, const FaceTilingParams& params,
+                    const EdgeEvidenceParams& evidence_params)
+{
+  std::vector<FaceTiling> tilings =
+      tileFaceEach(frame, segment, measured, {types}, tolerance_m, params, evidence_params,
+                   [](std::size_t, const std::vector<FaceTiling>&) { return true; });
+  return tilings.empty() ? FaceTiling() : std::move(tilings.front());
+}
+
+std::vector<FaceTiling> tileFaceEach(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                                     const std::vector<std::vector<const BrickType*>>& type_sets, double tolerance_m,
+                                     const FaceTilingParams& params, const EdgeEvidenceParams& evidence_params,
+                                     const std::function<bool(std::size_t set, const std::vector<FaceTiling>& made)>& wanted)
+{
+  std::vector<FaceTiling> tilings;
+  if (!measured.plane.valid) return tilings;
+  PlaneGrid grid(frame, segment, measured, params.cell_m, params.max_cells);
+  const int segment_cells = grid.freeCount();
+  if (segment_cells == 0) return tilings;
+  const Tiler::Evidence evidence = Tiler::evidenceOf(grid, params, evidence_params);
+  const std::vector<std::uint8_t> untiled = grid.states();
+  for (std::size_t set = 0; set < type_sets.size(); ++set)
+  {
+    if (!wanted(set, tilings)) continue;
+    grid.restore(untiled);
+    std::vector<Tiler::Placed> placed;
+    if (!type_sets[set].empty())
+      placed = Tiler(grid, evidence, type_sets[set], tolerance_m, params, evidence_params).run();
+    tilings.push_back(describeTiling(frame, segment, measured, grid, placed, segment_cells, evidence_params, params));
+  }
+  return tilings;
 }
 }  // namespace brick_pose

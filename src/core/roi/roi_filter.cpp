@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
 #include <opencv2/imgproc.hpp>
@@ -13,6 +14,7 @@
 #include "brick_pose/common/parallel_for.h"
 #include "brick_pose/common/rounding.h"
 #include "brick_pose/frame/organized_cloud.h"
+#include "brick_pose/roi/colour_uniformity.h"
 #include "brick_pose/roi/plate_splitter.h"
 #include "brick_pose/roi/type_evidence.h"
 
@@ -30,6 +32,14 @@ namespace
 constexpr double kMaxUntiledForAlternative = 0.1;
 constexpr double kMaxUntiledWithSeenSeams = 0.15;
 constexpr double kMinSeenCutShare = 0.75;
+/// A face of one brick's size is cut into smaller bricks along lines only
+/// when each is this dark (grey levels below both sides): the rounded edges
+/// of touching plates draw lines of 24-30 on the rig in normal light, while
+/// a faint line of 10 is no proof (see test_face_tiling).
+constexpr double kClearSeamLineContrast = 15.0;
+/// Real edges (step down, crease, seam) a colour-free plane needs before
+/// it is tiled as a layer of touching bricks (see RoiFilter::tile).
+constexpr int kMinRealEdgesOfALayer = 2;
 
 std::string describe(const std::string& what, double value, const std::string& rule, double limit)
 {
@@ -88,6 +98,23 @@ constexpr double kCornerBorderMarginPx = 2.5;
 /// class had two above 3.
 constexpr double kFaintSeamStrength = 5.0;
 constexpr double kPairedSeamStrength = 4.0;
+
+/// The first edge of `tile` cut through its segment without a seam seen
+/// along it, or -1.
+int firstUnseenCut(const FaceTile& tile)
+{
+  for (int k = 0; k < 4; ++k)
+    if (tile.cut[k] && !tile.seam_seen[k]) return k;
+  return -1;
+}
+
+/// Tiles of `tiling` with a seam seen along every cut: bricks whose size the
+/// image, not the catalogue, drew.
+int supportedTileCount(const FaceTiling& tiling)
+{
+  return static_cast<int>(std::count_if(tiling.tiles.begin(), tiling.tiles.end(),
+                                        [](const FaceTile& tile) { return firstUnseenCut(tile) < 0; }));
+}
 
 /// Whether the cuts of `tiling` show a trace of a seam (see kFaintSeamStrength).
 bool cutsShowSeamTraces(const RgbdFrame& frame, const PlaneFit& plane, const FaceTiling& tiling,
@@ -437,6 +464,50 @@ std::optional<RoiOutcome> RoiFilter::splitMerged(const RgbdFrame& frame, const S
   return outcome;
 }
 
+FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                                      const std::vector<const BrickType*>& types) const
+{
+  // Each type alone, the smallest tops first, then all together (mixed
+  // layers). Among tilings whose tiles' cuts are seen, the one with most
+  // such tiles wins: a row of greens tiled as reds cuts each green where no
+  // seam is, and tiled as oranges leaves their seams inside its tiles.
+  std::vector<std::vector<const BrickType*>> type_sets;
+  for (const BrickType* type : types) type_sets.push_back({type});
+  std::stable_sort(type_sets.begin(), type_sets.end(), [](const auto& a, const auto& b) {
+    return a.front()->length_m * a.front()->width_m < b.front()->length_m * b.front()->width_m;
+  });
+  if (types.size() > 1) type_sets.push_back(types);
+  // Every tile drawn by seams and the face covered: no single larger type
+  // can beat it (fewer tiles), and the mixed set only when a smaller type
+  // was passed over.
+  auto whollySeen = [](const FaceTiling& tiling) {
+    return tiling.tiles.size() >= 2 && supportedTileCount(tiling) == static_cast<int>(tiling.tiles.size()) &&
+           tiling.untiled_fraction <= kMaxUntiledForAlternative;
+  };
+  const std::size_t mixed = types.size() > 1 ? type_sets.size() - 1 : type_sets.size();
+  auto wanted = [&](std::size_t set, const std::vector<FaceTiling>& made) {
+    for (std::size_t k = 0; k < made.size(); ++k)
+      if (whollySeen(made[k])) return set == mixed && k > 0;
+    return true;
+  };
+  std::vector<FaceTiling> tilings = tileFaceEach(frame, segment, measured, type_sets, params_.dimensions.tolerance_m,
+                                                 params_.tiling, params_.edges, wanted);
+  // Ranked by tiles drawn by seams less tiles cut where nothing is seen,
+  // then by the former, then by the share left untiled.
+  FaceTiling* best = nullptr;
+  auto rank = [](const FaceTiling& tiling) {
+    const int supported = supportedTileCount(tiling);
+    const int unsupported = static_cast<int>(tiling.tiles.size()) - supported;
+    return std::make_tuple(supported - unsupported, supported, -tiling.untiled_fraction);
+  };
+  for (FaceTiling& tiling : tilings)
+  {
+    if (tiling.tiles.size() < 2 || tiling.cuts == 0 || supportedTileCount(tiling) == 0) continue;
+    if (!best || rank(tiling) > rank(*best)) best = &tiling;
+  }
+  return best ? std::move(*best) : FaceTiling();
+}
+
 bool RoiFilter::mayHoldTwoBricks(const BrickCandidate& candidate) const
 {
   double smallest_area_m2 = std::numeric_limits<double>::max();
@@ -454,21 +525,50 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   const bool typed_by_size = segment.type_name.empty();
   // Without colour, a large plane is as likely the ground or a table as a
   // layer of touching bricks: only a region that ends at real edges (a
-  // raised layer) is tiled.
+  // raised layer) is tiled. Two suffice: a row running out of the image at
+  // both ends still drops away along its sides, and its bricks wholly in
+  // view are whole tops.
   if (typed_by_size)
   {
     int real_edges = 0;
     for (const EdgeKind kind : measured.edge_kinds) real_edges += isRealEdge(kind) ? 1 : 0;
-    if (real_edges < 3) return std::nullopt;
+    if (real_edges < kMinRealEdgesOfALayer) return std::nullopt;
   }
-  FaceTiling tiling =
-      tileFace(frame, segment, measured, types, params_.dimensions.tolerance_m, params_.tiling, params_.edges);
+  FaceTiling tiling = typed_by_size && !seams_required
+                          ? tileBySeenSeams(frame, segment, measured, types)
+                          : tileFace(frame, segment, measured, types, params_.dimensions.tolerance_m, params_.tiling,
+                                     params_.edges);
   if (tried) *tried = tiling;
   if (tiling.tiles.size() < 2) return std::nullopt;
-  // Without colour every cut must dent the depth (print draws lines on
-  // boxes; only a gap between two of them dents the depth): a cut made from
-  // sizes alone would also make up the type of the bricks it separates.
-  if ((seams_required || typed_by_size) && (tiling.cuts == 0 || tiling.grooved_cuts < tiling.cuts)) return std::nullopt;
+  // Without colour every cut must be seen: a cut made from sizes alone
+  // would also make up the type of the bricks it separates. A dark line is
+  // a seam only on a plain face (see colour_uniformity.h): print draws lines
+  // on boxes, and only a gap between two of them dents the depth, while a
+  // real D4xx smooths the groove of a closed seam away (a 4 mm edge rounding
+  // leaves about half a millimetre under 3 mm of noise). Where a face of one
+  // brick's size is doubted (seams_required), every cut must be grooved, or
+  // lined with every tile plain. A face larger than any brick has no
+  // single-brick reading: each of its tiles needs its own cuts seen (below),
+  // and a tile whose cut is only a line on a printed face stays partial.
+  // The whole face too, by its scatter only (its seams are outliers): a
+  // plain-looking patch of a printed box (a white strip between two prints)
+  // is no plate.
+  std::vector<char> plain(tiling.tiles.size(), 0);
+  const bool face_unprinted =
+      typed_by_size &&
+      measureColourUniformity(frame, segment.mask, segment.bounding_box_px, params_.uniformity).sigma_grey <=
+          params_.uniformity.max_sigma_grey;
+  if (face_unprinted)
+    for (std::size_t k = 0; k < tiling.tiles.size(); ++k)
+      plain[k] = measureColourUniformity(frame, tiling.tiles[k].segment.mask, tiling.tiles[k].segment.bounding_box_px,
+                                         params_.uniformity)
+                     .uniform;
+  const bool all_plain = std::all_of(plain.begin(), plain.end(), [](char p) { return p != 0; });
+  const bool cuts_grooved = tiling.cuts > 0 && tiling.grooved_cuts == tiling.cuts;
+  const bool cuts_lined_on_plain_tiles = tiling.cuts > 0 && tiling.seen_cuts == tiling.cuts && all_plain &&
+                                         (!seams_required || tiling.weakest_cut_line >= kClearSeamLineContrast);
+  if (seams_required && !cuts_grooved && !cuts_lined_on_plain_tiles) return std::nullopt;
+  if (typed_by_size && (tiling.cuts == 0 || tiling.seen_cuts == 0)) return std::nullopt;
   // Each tile in its own slots, whichever thread measures it; gathered in
   // the tiling's order.
   const int tile_count = static_cast<int>(tiling.tiles.size());
@@ -485,10 +585,14 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
     if (!reason) reason = assignType(frame, context, part, candidate);
     // Without colour, a brick cut off by the border or an occluder could be
     // any longer type: its size does not tell.
+    if (!reason && typed_by_size && !seams_required)
+      if (const int unseen = firstUnseenCut(tiling.tiles[k]); unseen >= 0)
+        reason = "cut " + std::to_string(unseen) + " from its neighbour shows no seam (no groove, no line): " +
+                 "its size cannot tell its type";
     if (!reason && typed_by_size && anyTruncated(candidate))
       reason = "face is cut by an occluder or the image border (" + truncation(candidate) +
                "): its size cannot tell its type";
-    if (!reason) judgeCompleteness(frame, context, !typed_by_size, candidate);
+    if (!reason) judgeCompleteness(frame, context, !typed_by_size || plain[k], candidate);
   });
   RoiOutcome outcome;
   outcome.candidates.reserve(tiling.tiles.size());  // a growing vector would copy the candidates

@@ -1,0 +1,88 @@
+// Whether a face is of one plain colour (a plate) or printed (a box).
+#include <random>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "brick_pose/roi/colour_uniformity.h"
+
+namespace brick_pose
+{
+namespace
+{
+/// A 640x480 frame of one colour with grey noise of `noise_sigma` levels,
+/// and the mask of the face (a 300 x 200 px rectangle at (100, 100)).
+struct Face
+{
+  RgbdFrame frame;
+  cv::Mat mask;
+  cv::Rect box{100, 100, 300, 200};
+};
+
+Face plainFace(double noise_sigma, unsigned seed = 7)
+{
+  Face face;
+  face.frame.camera.width_px = 640;
+  face.frame.camera.height_px = 480;
+  face.frame.rgb = cv::Mat(480, 640, CV_8UC3, cv::Scalar(200, 60, 50));
+  face.frame.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(1.5f));
+  std::mt19937 generator(seed);
+  std::normal_distribution<double> noise(0.0, noise_sigma);
+  for (int v = 0; v < 480; ++v)
+    for (int u = 0; u < 640; ++u)
+    {
+      const double n = noise(generator);
+      cv::Vec3b& px = face.frame.rgb.at<cv::Vec3b>(v, u);
+      for (int c = 0; c < 3; ++c) px[c] = cv::saturate_cast<unsigned char>(px[c] + n);
+    }
+  face.mask = cv::Mat(face.box.size(), CV_8UC1, cv::Scalar(255));
+  return face;
+}
+
+ColourUniformity measure(const Face& face) { return measureColourUniformity(face.frame, face.mask, face.box); }
+
+TEST(ColourUniformity, APlateIsPlainUnderSensorNoiseUpToLowLight)
+{
+  for (const double sigma : {0.0, 2.0, 5.0})
+  {
+    const ColourUniformity plain = measure(plainFace(sigma));
+    EXPECT_TRUE(plain.uniform) << "noise " << sigma << ": scatter " << plain.sigma_grey << ", outliers "
+                               << plain.outlier_fraction;
+    EXPECT_LT(plain.sigma_grey, 10.0);
+  }
+}
+
+TEST(ColourUniformity, ASeamLineThroughThePlateKeepsItPlain)
+{
+  Face face = plainFace(2.0);
+  cv::line(face.frame.rgb, {250, 110}, {250, 290}, cv::Scalar(100, 30, 25), 2);
+  EXPECT_TRUE(measure(face).uniform) << measure(face).outlier_fraction;
+}
+
+TEST(ColourUniformity, ALabelOrStripesOrTextureArePrint)
+{
+  Face label = plainFace(2.0);
+  cv::rectangle(label.frame.rgb, {150, 150}, {230, 220}, cv::Scalar(250, 250, 250), cv::FILLED);
+  EXPECT_FALSE(measure(label).uniform) << measure(label).outlier_fraction;
+
+  Face stripes = plainFace(2.0);
+  for (int u = 140; u < 380; u += 40) cv::line(stripes.frame.rgb, {u, 110}, {u, 290}, cv::Scalar(20, 20, 20), 3);
+  EXPECT_FALSE(measure(stripes).uniform) << measure(stripes).outlier_fraction;
+
+  // Busy print everywhere: a large scatter and no outliers beyond it.
+  const ColourUniformity busy = measure(plainFace(30.0));
+  EXPECT_FALSE(busy.uniform) << busy.sigma_grey;
+}
+
+TEST(ColourUniformity, TooSmallAFaceSaysNothing)
+{
+  Face face = plainFace(1.0);
+  face.box = cv::Rect(100, 100, 10, 10);
+  face.mask = cv::Mat(face.box.size(), CV_8UC1, cv::Scalar(255));
+  const ColourUniformity tiny = measure(face);
+  EXPECT_FALSE(tiny.uniform);
+  EXPECT_EQ(tiny.samples, 0);
+  EXPECT_FALSE(measureColourUniformity(face.frame, cv::Mat(), face.box).uniform);
+}
+}  // namespace
+}  // namespace brick_pose
