@@ -69,9 +69,21 @@ TEST(ColourUniformity, ALabelOrStripesOrTextureArePrint)
   for (int u = 140; u < 380; u += 40) cv::line(stripes.frame.rgb, {u, 110}, {u, 290}, cv::Scalar(20, 20, 20), 3);
   EXPECT_FALSE(measure(stripes).uniform) << measure(stripes).outlier_fraction;
 
-  // Busy print everywhere: a large scatter and no outliers beyond it.
-  const ColourUniformity busy = measure(plainFace(30.0));
-  EXPECT_FALSE(busy.uniform) << busy.sigma_grey;
+  // Busy print everywhere (patches of 8 px in random shades): a large
+  // scatter and no outliers beyond it.
+  Face busy = plainFace(2.0);
+  std::mt19937 generator(3);
+  std::uniform_int_distribution<int> shade(-40, 40);
+  for (int v = 100; v < 300; v += 8)
+    for (int u = 100; u < 400; u += 8)
+    {
+      const int s = shade(generator);
+      cv::rectangle(busy.frame.rgb, {u, v}, {u + 7, v + 7}, cv::Scalar(200 + s / 4, 60 + s, 50 + s), cv::FILLED);
+    }
+  EXPECT_FALSE(measure(busy).uniform) << measure(busy).sigma_grey;
+
+  // Pixel noise alone, however strong, is no print: the blocks average it.
+  EXPECT_LT(measure(plainFace(20.0)).sigma_grey, 8.0);
 }
 
 TEST(ColourUniformity, TooSmallAFaceSaysNothing)

@@ -221,9 +221,9 @@ void printOnPlates(const test::TouchingPlatesScene& scene, RgbdFrame& frame)
           scene.toCamera(plate.min_m.x() + fx * size.x(), plate.min_m.y() + fy * size.y()));
       return cv::Point(static_cast<int>(p.x()), static_cast<int>(p.y()));
     };
-    cv::rectangle(frame.rgb, pixel(0.2, 0.25), pixel(0.5, 0.75), cv::Scalar(250, 250, 250), cv::FILLED);
-    cv::line(frame.rgb, pixel(0.6, 0.1), pixel(0.6, 0.9), cv::Scalar(20, 20, 20), 3);
-    cv::line(frame.rgb, pixel(0.75, 0.1), pixel(0.75, 0.9), cv::Scalar(20, 20, 20), 3);
+    cv::rectangle(frame.rgb, pixel(0.25, 0.3), pixel(0.5, 0.7), cv::Scalar(250, 250, 250), cv::FILLED);
+    cv::line(frame.rgb, pixel(0.6, 0.3), pixel(0.6, 0.7), cv::Scalar(20, 20, 20), 3);
+    cv::line(frame.rgb, pixel(0.7, 0.3), pixel(0.7, 0.7), cv::Scalar(20, 20, 20), 3);
   }
 }
 
@@ -294,6 +294,43 @@ TEST(FaceTiling, ColourFreeTilingPrefersTheSizesItsSeamsDraw)
   const FrontEndResult greens = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
   ASSERT_EQ(greens.candidates.size(), 2u);
   for (const BrickCandidate& c : greens.candidates) EXPECT_EQ(c.type_name, "green");
+}
+
+TEST(FaceTiling, ColourFreeTopThatSmallerBoxesMakeUpIsCompleteOnlyWhenPlain)
+{
+  // A box_large top (0.4 x 0.3 m) in a layer, touching a box_small (0.3 x
+  // 0.2 m) along a seen seam. Two box_smalls side by side make the same top
+  // with a seam across its middle: on a plain face that seam would show,
+  // on a printed one it need not.
+  const BrickCatalogue boxes = BrickCatalogue::fromYamlFile(BRICK_POSE_SOURCE_DIR "/config/boxes.yaml");
+  test::TouchingPlatesScene scene = rowScene(1, 0.6, 0.2);
+  const cv::Vec3b kraft(180, 140, 100);
+  scene.plates = {{{-0.2, -0.3}, {0.2, 0.0}, kraft}, {{-0.15, 0.0}, {0.15, 0.2}, kraft}};
+  scene.line_darkening = 40.0;
+  scene.line_half_width_m = 0.002;
+  scene.groove_depth_m = 0.005;  // a gap of a few mm: a real edge, print or not
+  FrontEndParams params;
+  params.mode = SegmentationMode::kRegionGrowing;
+  const FrontEnd front_end(boxes, params);
+  auto large = [](const FrontEndResult& result) -> const BrickCandidate* {
+    for (const BrickCandidate& c : result.candidates)
+      if (c.type_name == "box_large") return &c;
+    return nullptr;
+  };
+
+  const FrontEndResult plain = front_end.process(scene.frame());
+  const BrickCandidate* plain_large = large(plain);
+  ASSERT_NE(plain_large, nullptr);
+  EXPECT_TRUE(plain_large->complete) << plain_large->partial_reason;
+
+  RgbdFrame printed_frame = scene.frame();
+  printOnPlates(scene, printed_frame);
+  const FrontEndResult printed = front_end.process(printed_frame);
+  const BrickCandidate* printed_large = large(printed);
+  ASSERT_NE(printed_large, nullptr);
+  EXPECT_FALSE(printed_large->complete);
+  EXPECT_NE(printed_large->partial_reason.find("box_small tops touching"), std::string::npos)
+      << printed_large->partial_reason;
 }
 
 TEST(FaceTiling, ParameterChecks)

@@ -162,15 +162,19 @@ TEST(MosdTopFaces, WithoutUpNoFaceIsComplete)
   ASSERT_TRUE(scene);
   const test::MosdTruth truth = test::analyseMosdScene(*scene);
   const RoiFilter filter(boxes(), RoiFilterParams(), FrontEndParams::defaultSegmentCloudParams());
-  int candidates = 0;
+  int candidates = 0, up_unknown = 0;
   for (const Segment& face : test::labelledFaceSegments(*scene, truth))
     for (const BrickCandidate& candidate : filter.filterSplitting(scene->frame, face).candidates)
     {
       ++candidates;
       EXPECT_FALSE(candidate.complete);
-      EXPECT_NE(candidate.partial_reason.find("up direction unknown"), std::string::npos) << candidate.partial_reason;
+      EXPECT_FALSE(candidate.partial_reason.empty());
+      // Pieces of a face larger than any box, tiled, stop at a cut first.
+      up_unknown += candidate.partial_reason.find("up direction unknown") != std::string::npos ? 1 : 0;
     }
-  EXPECT_GE(candidates, 2) << "the two tops (and side faces of a top's size) are still candidates";
+  EXPECT_GE(up_unknown, 2) << "the two tops (and side faces of a top's size) are still candidates, partial for "
+                              "want of up; of "
+                           << candidates;
 }
 
 }  // namespace

@@ -16,29 +16,33 @@ struct ColourUniformityParams
   /// The face's rim is left out (px): its edges, seams and the colour's
   /// 1-2 px misregistration against the depth that drew the mask.
   int rim_px = 4;
-  /// A pixel is off the face's colour when its grey level is this many
-  /// robust standard deviations of the face's own scatter from the median,
-  /// and at least min_contrast levels (sensor noise, low light included,
-  /// stays within both)...
+  /// The face is read in blocks of this many pixels square (their mean
+  /// grey): averaging quarters the pixel noise, so that print still stands
+  /// out in low light, where a label is 20 grey levels above dark cardboard
+  /// and the pixel noise 6.
+  int block_px = 4;
+  /// A block is off the face's colour when its grey level is this many
+  /// robust standard deviations of the blocks' scatter from their median,
+  /// and at least min_contrast levels...
   double outlier_sigmas = 5.0;
-  double min_contrast = 24.0;
-  /// ... and a face with more than this share of such pixels is not plain
+  double min_contrast = 8.0;
+  /// ... and a face with more than this share of such blocks is not plain
   /// (a label, a tape stripe or a barcode covers more).
   double max_outlier_fraction = 0.02;
-  /// A plain face's own grey scatter (robust standard deviation) stays
-  /// below this: sensor noise is 1-5 levels on the rig (low light
-  /// included), while printed boxes scatter by 13-60 (real mOSD boxes).
-  double max_sigma_grey = 10.0;
-  /// Pixels read at most (every k-th row and column beyond).
+  /// A plain face's blocks scatter less than this (robust standard
+  /// deviation, grey levels): sensor noise leaves 1-2 on the rig, low light
+  /// included, while printed boxes scatter by 10-60 (real mOSD boxes).
+  double max_sigma_grey = 8.0;
+  /// Blocks read at most (every k-th block row and column beyond).
   int max_samples = 4000;
 };
 
 struct ColourUniformity
 {
   double median_grey = 0.0;
-  double sigma_grey = 0.0;        ///< Robust (1.4826 MAD).
-  double outlier_fraction = 1.0;  ///< Of the pixels read.
-  int samples = 0;
+  double sigma_grey = 0.0;        ///< Of the blocks' means, robust (1.4826 MAD).
+  double outlier_fraction = 1.0;  ///< Of the blocks read.
+  int samples = 0;                ///< Blocks read.
   bool uniform = false;           ///< Enough samples, a small scatter and few outliers.
 };
 

@@ -141,6 +141,16 @@ private:
   /// height the sides seen below the face's edges agree with).
   std::optional<std::string> assignType(const RgbdFrame& frame, const FrameContext& context, const Segment& segment,
                                         BrickCandidate& candidate) const;
+  /// The type of a measured face by its size alone: the closest catalogue
+  /// top, and the rivals (types sharing it, boxes lying on a side) the
+  /// sides seen do not rule out as `type_doubt`; the reason when none fits.
+  std::optional<std::string> typeBySize(const RgbdFrame& frame, const FrameContext& context,
+                                        BrickCandidate& candidate) const;
+  /// Colour-free: a complete face whose top smaller catalogue tops also
+  /// make up (two box_small side by side are a box_large) is one brick only
+  /// where the seam between them would show, as a line on a plain face.
+  /// On a printed face it is made partial with the reason.
+  void doubtComposedTop(const RgbdFrame& frame, BrickCandidate& candidate) const;
   /// Sets `complete` and `partial_reason` of a typed candidate;
   /// `uniform_colour`: found by its plate colour, so a dark line along an
   /// edge is a seam (on printed boxes it may be print).

@@ -12,8 +12,8 @@ namespace brick_pose
 {
 namespace
 {
-/// Fewer pixels than this say nothing about a face's colour.
-constexpr int kMinSamples = 50;
+/// Fewer blocks than this say nothing about a face's colour.
+constexpr int kMinSamples = 12;
 }  // namespace
 
 ColourUniformity measureColourUniformity(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box,
@@ -26,24 +26,23 @@ ColourUniformity measureColourUniformity(const RgbdFrame& frame, const cv::Mat& 
   // Outside the mask's box is outside the face: the border erodes too.
   cv::erode(mask, inner, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * rim + 1, 2 * rim + 1)),
             cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
-  const int inside = cv::countNonZero(inner);
-  if (inside < kMinSamples) return result;
-  const int step = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(inside) / std::max(1, params.max_samples))));
+  const int block = std::max(1, params.block_px);
+  const int blocks_u = inner.cols / block, blocks_v = inner.rows / block;
+  if (blocks_u == 0 || blocks_v == 0) return result;
+  const int step = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(blocks_u) * blocks_v /
+                                                          std::max(1, params.max_samples))));
   std::vector<double> grey;
-  grey.reserve(static_cast<std::size_t>(inside / (step * step) + 1));
-  for (int v = 0; v < inner.rows; v += step)
-  {
-    const unsigned char* row = inner.ptr<unsigned char>(v);
-    const int frame_v = v + box.y;
-    if (frame_v < 0 || frame_v >= frame.height_px()) continue;
-    const cv::Vec3b* rgb = frame.rgb.ptr<cv::Vec3b>(frame_v);
-    for (int u = 0; u < inner.cols; u += step)
+  for (int bv = 0; bv < blocks_v; bv += step)
+    for (int bu = 0; bu < blocks_u; bu += step)
     {
-      const int frame_u = u + box.x;
-      if (!row[u] || frame_u < 0 || frame_u >= frame.width_px()) continue;
-      grey.push_back((static_cast<double>(rgb[frame_u][0]) + rgb[frame_u][1] + rgb[frame_u][2]) / 3.0);
+      const cv::Rect cell(bu * block, bv * block, block, block);
+      const cv::Rect in_frame = cell + box.tl();
+      // Whole blocks inside the face and the image only.
+      if ((in_frame & cv::Rect(0, 0, frame.width_px(), frame.height_px())) != in_frame) continue;
+      if (cv::countNonZero(inner(cell)) < block * block) continue;
+      const cv::Scalar mean = cv::mean(frame.rgb(in_frame));
+      grey.push_back((mean[0] + mean[1] + mean[2]) / 3.0);
     }
-  }
   result.samples = static_cast<int>(grey.size());
   if (result.samples < kMinSamples) return result;
   result.median_grey = percentile(grey, 0.5);

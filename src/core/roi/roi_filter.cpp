@@ -99,6 +99,30 @@ constexpr double kCornerBorderMarginPx = 2.5;
 constexpr double kFaintSeamStrength = 5.0;
 constexpr double kPairedSeamStrength = 4.0;
 
+/// A smaller catalogue type whose tops, two or more in a grid, make up the
+/// top of type `name` within `tolerance_m`; null when none does.
+const BrickType* smallerTypeTiling(const std::vector<BrickType>& types, const std::string& name, double tolerance_m)
+{
+  const auto whole = std::find_if(types.begin(), types.end(), [&](const BrickType& t) { return t.name == name; });
+  if (whole == types.end()) return nullptr;
+  auto multiple = [&](double total_m, double part_m) {
+    const int count = roundToInt(total_m / part_m);
+    return count >= 1 && std::abs(total_m - count * part_m) <= tolerance_m ? count : 0;
+  };
+  for (const BrickType& part : types)
+  {
+    if (part.length_m * part.width_m >= 0.9 * whole->length_m * whole->width_m) continue;
+    for (const bool turned : {false, true})
+    {
+      const double along_m = turned ? part.width_m : part.length_m;
+      const double across_m = turned ? part.length_m : part.width_m;
+      const int n = multiple(whole->length_m, along_m), m = multiple(whole->width_m, across_m);
+      if (n * m >= 2) return &part;
+    }
+  }
+  return nullptr;
+}
+
 /// The first edge of `tile` cut through its segment without a seam seen
 /// along it, or -1.
 int firstUnseenCut(const FaceTile& tile)
@@ -392,6 +416,13 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
                                  "catalogue tops touching (" + alternative.tiles.front().type_name + ", ...)" +
                                  ", and a line (or a trace of one) crosses it where they would meet";
     }
+    // A face that touches a neighbour on its own plane (a seam) lies in a
+    // layer of boxes, where smaller ones may lie side by side in its place;
+    // a box standing alone ends at steps and creases.
+    const bool touches_a_neighbour =
+        std::any_of(candidate.edge_kinds.begin(), candidate.edge_kinds.end(),
+                    [](EdgeKind kind) { return kind == EdgeKind::kSeam || kind == EdgeKind::kColourLine; });
+    if (candidate.complete && segment.type_name.empty() && touches_a_neighbour) doubtComposedTop(frame, candidate);
     outcome.candidates.push_back(std::move(candidate));
     return outcome;
   }
@@ -592,7 +623,11 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
     if (!reason && typed_by_size && anyTruncated(candidate))
       reason = "face is cut by an occluder or the image border (" + truncation(candidate) +
                "): its size cannot tell its type";
+    // The tiler's size is one reading of the tile; types sharing that top
+    // and boxes lying on a side are its rivals, as for any colour-free face.
+    if (!reason && typed_by_size) reason = typeBySize(frame, context, candidate);
     if (!reason) judgeCompleteness(frame, context, !typed_by_size || plain[k], candidate);
+    if (!reason && typed_by_size && candidate.complete && !plain[k]) doubtComposedTop(frame, candidate);
   });
   RoiOutcome outcome;
   outcome.candidates.reserve(tiling.tiles.size());  // a growing vector would copy the candidates
@@ -703,11 +738,6 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
   // noise; only thickness beyond that spread says "not a flat face".
   const double noise_spread_m = 6.0 * candidate.plane.rms_m;
   const double thickness_m = candidate.obb.valid ? std::max(0.0, candidate.obb.extents_m.z() - noise_spread_m) : 0.0;
-  auto fits = [&](const BrickType& type, double tolerance_m) {
-    return std::abs(candidate.length_m - type.length_m) <= tolerance_m &&
-           std::abs(candidate.width_m - type.width_m) <= tolerance_m;
-  };
-
   if (!segment.type_name.empty())
   {
     const BrickType* type = catalogue_.find(segment.type_name);
@@ -725,6 +755,16 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
     return describe("segment fills", candidate.fill_ratio, "of its quad, less than", params_.min_fill_ratio);
   if (thickness_m > tolerance.max_thickness_m)
     return describe("thickness", thickness_m, "m exceeds", tolerance.max_thickness_m);
+  return typeBySize(frame, context, candidate);
+}
+
+std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const FrameContext& context,
+                                                 BrickCandidate& candidate) const
+{
+  auto fits = [&](const BrickType& type, double tolerance_m) {
+    return std::abs(candidate.length_m - type.length_m) <= tolerance_m &&
+           std::abs(candidate.width_m - type.width_m) <= tolerance_m;
+  };
   std::vector<const BrickType*> fitting;
   double tallest_m = 0.0;
   for (const BrickType& type : catalogue_.types())
@@ -763,6 +803,16 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
   candidate.type_name = best->name;
   candidate.type_doubt = typeDoubt(rivals, *best, candidate.length_m, candidate.width_m, sides, params_.sides);
   return std::nullopt;
+}
+
+void RoiFilter::doubtComposedTop(const RgbdFrame& frame, BrickCandidate& candidate) const
+{
+  const BrickType* smaller = smallerTypeTiling(catalogue_.types(), candidate.type_name, params_.dimensions.tolerance_m);
+  if (!smaller || measureColourUniformity(frame, candidate.mask, candidate.bounding_box_px, params_.uniformity).uniform)
+    return;
+  candidate.complete = false;
+  candidate.partial_reason =
+      "its top is also " + smaller->name + " tops touching, and on a printed face their seam need not show";
 }
 
 void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& context, bool uniform_colour,
