@@ -498,28 +498,32 @@ std::optional<RoiOutcome> RoiFilter::splitMerged(const RgbdFrame& frame, const S
 FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
                                       const std::vector<const BrickType*>& types) const
 {
-  // Each type alone, the smallest tops first, then all together (mixed
-  // layers). Among tilings whose tiles' cuts are seen, the one with most
-  // such tiles wins: a row of greens tiled as reds cuts each green where no
-  // seam is, and tiled as oranges leaves their seams inside its tiles.
-  std::vector<std::vector<const BrickType*>> type_sets;
-  for (const BrickType* type : types) type_sets.push_back({type});
-  std::stable_sort(type_sets.begin(), type_sets.end(), [](const auto& a, const auto& b) {
+  // All types together first (mixed layers); then, when it saw any seam,
+  // each type alone, the smallest tops first. Among tilings whose tiles'
+  // cuts are seen, the one with most such tiles wins: a row of greens
+  // tiled as reds cuts each green where no seam is, and tiled as oranges
+  // leaves their seams inside its tiles.
+  std::vector<std::vector<const BrickType*>> type_sets{types};
+  std::vector<std::vector<const BrickType*>> single;
+  for (const BrickType* type : types) single.push_back({type});
+  std::stable_sort(single.begin(), single.end(), [](const auto& a, const auto& b) {
     return a.front()->length_m * a.front()->width_m < b.front()->length_m * b.front()->width_m;
   });
-  if (types.size() > 1) type_sets.push_back(types);
-  // Every tile drawn by seams and the face covered: no single larger type
-  // can beat it (fewer tiles), and the mixed set only when a smaller type
-  // was passed over.
+  if (types.size() > 1) type_sets.insert(type_sets.end(), single.begin(), single.end());
+  // Every tile drawn by seams and the face covered: the tiler, which
+  // avoids seams inside its tiles, found the finest tiling there is; and a
+  // single type after it can only have fewer, larger tiles.
   auto whollySeen = [](const FaceTiling& tiling) {
     return tiling.tiles.size() >= 2 && supportedTileCount(tiling) == static_cast<int>(tiling.tiles.size()) &&
            tiling.untiled_fraction <= kMaxUntiledForAlternative;
   };
-  const std::size_t mixed = types.size() > 1 ? type_sets.size() - 1 : type_sets.size();
+  // Nothing seen along any cut of the mixed tiling (an occluded brick, a
+  // row in the dark): no type alone will see more. Most faces tiled here
+  // are such, and this keeps them to one tiling.
   auto wanted = [&](std::size_t set, const std::vector<FaceTiling>& made) {
-    for (std::size_t k = 0; k < made.size(); ++k)
-      if (whollySeen(made[k])) return set == mixed && k > 0;
-    return true;
+    if (set == 0) return true;
+    if (made.front().seen_cuts == 0) return false;
+    return std::none_of(made.begin(), made.end(), whollySeen);
   };
   std::vector<FaceTiling> tilings = tileFaceEach(frame, segment, measured, type_sets, params_.dimensions.tolerance_m,
                                                  params_.tiling, params_.edges, wanted);
@@ -612,14 +616,19 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
     part.type_name = tiling.tiles[k].type_name;
     BrickCandidate& candidate = candidates[k];
     std::optional<std::string>& reason = reasons[k];
+    // Without colour, a tile cut where no seam shows is a guess of the
+    // tiler's (checked first: it needs no measuring).
+    if (typed_by_size && !seams_required)
+      if (const int unseen = firstUnseenCut(tiling.tiles[k]); unseen >= 0)
+      {
+        reason = "cut " + std::to_string(unseen) + " from its neighbour shows no seam (no groove, no line): " +
+                 "its size cannot tell its type";
+        return;
+      }
     reason = measure(frame, part, context, &tile_timings[k], candidate);
     if (!reason) reason = assignType(frame, context, part, candidate);
     // Without colour, a brick cut off by the border or an occluder could be
     // any longer type: its size does not tell.
-    if (!reason && typed_by_size && !seams_required)
-      if (const int unseen = firstUnseenCut(tiling.tiles[k]); unseen >= 0)
-        reason = "cut " + std::to_string(unseen) + " from its neighbour shows no seam (no groove, no line): " +
-                 "its size cannot tell its type";
     if (!reason && typed_by_size && anyTruncated(candidate))
       reason = "face is cut by an occluder or the image border (" + truncation(candidate) +
                "): its size cannot tell its type";
