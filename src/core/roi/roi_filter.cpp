@@ -37,9 +37,6 @@ constexpr double kMinSeenCutShare = 0.75;
 /// of touching plates draw lines of 24-30 on the rig in normal light, while
 /// a faint line of 10 is no proof (see test_face_tiling).
 constexpr double kClearSeamLineContrast = 15.0;
-/// Real edges (step down, crease, seam) a colour-free plane needs before
-/// it is tiled as a layer of touching bricks (see RoiFilter::tile).
-constexpr int kMinRealEdgesOfALayer = 2;
 
 std::string describe(const std::string& what, double value, const std::string& rule, double limit)
 {
@@ -560,14 +557,20 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   const bool typed_by_size = segment.type_name.empty();
   // Without colour, a large plane is as likely the ground or a table as a
   // layer of touching bricks: only a region that ends at real edges (a
-  // raised layer) is tiled. Two suffice: a row running out of the image at
-  // both ends still drops away along its sides, and its bricks wholly in
-  // view are whole tops.
+  // raised layer) is tiled, on three sides; or on two where the others run
+  // out of the image (a row longer than the view: its bricks wholly in view
+  // are whole tops). A face hidden under an occluder on two sides gives only
+  // bricks cut off by it.
   if (typed_by_size)
   {
-    int real_edges = 0;
-    for (const EdgeKind kind : measured.edge_kinds) real_edges += isRealEdge(kind) ? 1 : 0;
-    if (real_edges < kMinRealEdgesOfALayer) return std::nullopt;
+    int real_edges = 0, border_edges = 0;
+    for (const EdgeKind kind : measured.edge_kinds)
+    {
+      real_edges += isRealEdge(kind) ? 1 : 0;
+      border_edges += kind == EdgeKind::kImageBorder ? 1 : 0;
+    }
+    const bool layer = real_edges >= 3 || (real_edges >= 2 && real_edges + border_edges == 4);
+    if (!layer) return std::nullopt;
   }
   FaceTiling tiling = typed_by_size && !seams_required
                           ? tileBySeenSeams(frame, segment, measured, types)
@@ -588,9 +591,15 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   // The whole face too, by its scatter only (its seams are outliers): a
   // plain-looking patch of a printed box (a white strip between two prints)
   // is no plate.
+  if (typed_by_size && (tiling.cuts == 0 || tiling.seen_cuts == 0)) return std::nullopt;
+  const bool cuts_grooved = tiling.cuts > 0 && tiling.grooved_cuts == tiling.cuts;
+  const bool cuts_lined = tiling.cuts > 0 && tiling.seen_cuts == tiling.cuts &&
+                          (!seams_required || tiling.weakest_cut_line >= kClearSeamLineContrast);
+  if (seams_required && !cuts_grooved && !cuts_lined) return std::nullopt;
+  // Measured only where it can decide something (it reads every tile).
   std::vector<char> plain(tiling.tiles.size(), 0);
   const bool face_unprinted =
-      typed_by_size &&
+      typed_by_size && (!seams_required || !cuts_grooved) &&
       measureColourUniformity(frame, segment.mask, segment.bounding_box_px, params_.uniformity).sigma_grey <=
           params_.uniformity.max_sigma_grey;
   if (face_unprinted)
@@ -599,11 +608,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
                                          params_.uniformity)
                      .uniform;
   const bool all_plain = std::all_of(plain.begin(), plain.end(), [](char p) { return p != 0; });
-  const bool cuts_grooved = tiling.cuts > 0 && tiling.grooved_cuts == tiling.cuts;
-  const bool cuts_lined_on_plain_tiles = tiling.cuts > 0 && tiling.seen_cuts == tiling.cuts && all_plain &&
-                                         (!seams_required || tiling.weakest_cut_line >= kClearSeamLineContrast);
-  if (seams_required && !cuts_grooved && !cuts_lined_on_plain_tiles) return std::nullopt;
-  if (typed_by_size && (tiling.cuts == 0 || tiling.seen_cuts == 0)) return std::nullopt;
+  if (seams_required && !cuts_grooved && !all_plain) return std::nullopt;
   // Each tile in its own slots, whichever thread measures it; gathered in
   // the tiling's order.
   const int tile_count = static_cast<int>(tiling.tiles.size());
