@@ -517,10 +517,18 @@ FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& seg
   // Nothing seen along any cut of the mixed tiling (an occluded brick, a
   // row in the dark): no type alone will see more. Most faces tiled here
   // are such, and this keeps them to one tiling.
+  // A type alone larger than every brick the mixed tiling drew with seams
+  // can only leave those seams inside its tiles.
+  auto area = [](const BrickType& type) { return type.length_m * type.width_m; };
   auto wanted = [&](std::size_t set, const std::vector<FaceTiling>& made) {
     if (set == 0) return true;
-    if (made.front().seen_cuts == 0) return false;
-    return std::none_of(made.begin(), made.end(), whollySeen);
+    const FaceTiling& mixed = made.front();
+    if (mixed.seen_cuts == 0 || std::any_of(made.begin(), made.end(), whollySeen)) return false;
+    double largest_seen_m2 = 0.0;
+    for (const FaceTile& tile : mixed.tiles)
+      if (firstUnseenCut(tile) < 0)
+        if (const BrickType* type = catalogue_.find(tile.type_name)) largest_seen_m2 = std::max(largest_seen_m2, area(*type));
+    return largest_seen_m2 == 0.0 || area(*type_sets[set].front()) <= largest_seen_m2 + 1e-9;
   };
   std::vector<FaceTiling> tilings = tileFaceEach(frame, segment, measured, type_sets, params_.dimensions.tolerance_m,
                                                  params_.tiling, params_.edges, wanted);
