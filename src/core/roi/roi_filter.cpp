@@ -120,6 +120,40 @@ const BrickType* smallerTypeTiling(const std::vector<BrickType>& types, const st
   return nullptr;
 }
 
+/// Whether a colour-free plane is a raised layer worth tiling rather than
+/// the ground or a table: it ends at real edges on three sides, or on two
+/// with the others at the image border (a row longer than the view: its
+/// bricks wholly in view are whole tops). A face hidden under an occluder on
+/// two sides gives only bricks cut off by it.
+bool isRaisedLayer(const EdgeKinds& kinds)
+{
+  int real_edges = 0, border_edges = 0;
+  for (const EdgeKind kind : kinds)
+  {
+    real_edges += isRealEdge(kind) ? 1 : 0;
+    border_edges += kind == EdgeKind::kImageBorder ? 1 : 0;
+  }
+  return real_edges >= 3 || (real_edges >= 2 && real_edges + border_edges == 4);
+}
+
+/// Per tile, whether it is plain (see colour_uniformity.h), and so is the
+/// whole face by its scatter (its seams are outliers, not print): a
+/// plain-looking patch of a printed box, a white strip between two prints,
+/// is no plate.
+std::vector<char> plainTiles(const RgbdFrame& frame, const Segment& segment, const FaceTiling& tiling,
+                             const ColourUniformityParams& params)
+{
+  std::vector<char> plain(tiling.tiles.size(), 0);
+  if (measureColourUniformity(frame, segment.mask, segment.bounding_box_px, params).sigma_grey > params.max_sigma_grey)
+    return plain;
+  for (std::size_t k = 0; k < tiling.tiles.size(); ++k)
+  {
+    const Segment& tile = tiling.tiles[k].segment;
+    plain[k] = measureColourUniformity(frame, tile.mask, tile.bounding_box_px, params).uniform;
+  }
+  return plain;
+}
+
 /// The first edge of `tile` cut through its segment without a seam seen
 /// along it, or -1.
 int firstUnseenCut(const FaceTile& tile)
@@ -419,7 +453,10 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
     const bool touches_a_neighbour =
         std::any_of(candidate.edge_kinds.begin(), candidate.edge_kinds.end(),
                     [](EdgeKind kind) { return kind == EdgeKind::kSeam || kind == EdgeKind::kColourLine; });
-    if (candidate.complete && segment.type_name.empty() && touches_a_neighbour) doubtComposedTop(frame, candidate);
+    if (candidate.complete && segment.type_name.empty() && touches_a_neighbour)
+      doubtComposedTop(measureColourUniformity(frame, candidate.mask, candidate.bounding_box_px, params_.uniformity)
+                           .uniform,
+                       candidate);
     outcome.candidates.push_back(std::move(candidate));
     return outcome;
   }
@@ -563,23 +600,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   const std::vector<const BrickType*> types = only_types ? *only_types : typesFor(catalogue_, segment.type_name);
   if (types.empty()) return std::nullopt;
   const bool typed_by_size = segment.type_name.empty();
-  // Without colour, a large plane is as likely the ground or a table as a
-  // layer of touching bricks: only a region that ends at real edges (a
-  // raised layer) is tiled, on three sides; or on two where the others run
-  // out of the image (a row longer than the view: its bricks wholly in view
-  // are whole tops). A face hidden under an occluder on two sides gives only
-  // bricks cut off by it.
-  if (typed_by_size)
-  {
-    int real_edges = 0, border_edges = 0;
-    for (const EdgeKind kind : measured.edge_kinds)
-    {
-      real_edges += isRealEdge(kind) ? 1 : 0;
-      border_edges += kind == EdgeKind::kImageBorder ? 1 : 0;
-    }
-    const bool layer = real_edges >= 3 || (real_edges >= 2 && real_edges + border_edges == 4);
-    if (!layer) return std::nullopt;
-  }
+  if (typed_by_size && !isRaisedLayer(measured.edge_kinds)) return std::nullopt;
   FaceTiling tiling = typed_by_size && !seams_required
                           ? tileBySeenSeams(frame, segment, measured, types)
                           : tileFace(frame, segment, measured, types, params_.dimensions.tolerance_m, params_.tiling,
@@ -593,28 +614,18 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   // real D4xx smooths the groove of a closed seam away (a 4 mm edge rounding
   // leaves about half a millimetre under 3 mm of noise). Where a face of one
   // brick's size is doubted (seams_required), every cut must be grooved, or
-  // lined with every tile plain. A face larger than any brick has no
+  // clearly lined with every tile plain. A face larger than any brick has no
   // single-brick reading: each of its tiles needs its own cuts seen (below),
   // and a tile whose cut is only a line on a printed face stays partial.
-  // The whole face too, by its scatter only (its seams are outliers): a
-  // plain-looking patch of a printed box (a white strip between two prints)
-  // is no plate.
   if (typed_by_size && (tiling.cuts == 0 || tiling.seen_cuts == 0)) return std::nullopt;
   const bool cuts_grooved = tiling.cuts > 0 && tiling.grooved_cuts == tiling.cuts;
   const bool cuts_lined = tiling.cuts > 0 && tiling.seen_cuts == tiling.cuts &&
                           (!seams_required || tiling.weakest_cut_line >= kClearSeamLineContrast);
   if (seams_required && !cuts_grooved && !cuts_lined) return std::nullopt;
-  // Measured only where it can decide something (it reads every tile).
-  std::vector<char> plain(tiling.tiles.size(), 0);
-  const bool face_unprinted =
-      typed_by_size && (!seams_required || !cuts_grooved) &&
-      measureColourUniformity(frame, segment.mask, segment.bounding_box_px, params_.uniformity).sigma_grey <=
-          params_.uniformity.max_sigma_grey;
-  if (face_unprinted)
-    for (std::size_t k = 0; k < tiling.tiles.size(); ++k)
-      plain[k] = measureColourUniformity(frame, tiling.tiles[k].segment.mask, tiling.tiles[k].segment.bounding_box_px,
-                                         params_.uniformity)
-                     .uniform;
+  // Read only where it can decide something (it reads every tile).
+  const std::vector<char> plain = typed_by_size && (!seams_required || !cuts_grooved)
+                                      ? plainTiles(frame, segment, tiling, params_.uniformity)
+                                      : std::vector<char>(tiling.tiles.size(), 0);
   const bool all_plain = std::all_of(plain.begin(), plain.end(), [](char p) { return p != 0; });
   if (seams_required && !cuts_grooved && !all_plain) return std::nullopt;
   // Each tile in its own slots, whichever thread measures it; gathered in
@@ -649,7 +660,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
     // and boxes lying on a side are its rivals, as for any colour-free face.
     if (!reason && typed_by_size) reason = typeBySize(frame, context, candidate);
     if (!reason) judgeCompleteness(frame, context, !typed_by_size || plain[k], candidate);
-    if (!reason && typed_by_size && candidate.complete && !plain[k]) doubtComposedTop(frame, candidate);
+    if (!reason && typed_by_size) doubtComposedTop(plain[k] != 0, candidate);
   });
   RoiOutcome outcome;
   outcome.candidates.reserve(tiling.tiles.size());  // a growing vector would copy the candidates
@@ -827,11 +838,11 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
   return std::nullopt;
 }
 
-void RoiFilter::doubtComposedTop(const RgbdFrame& frame, BrickCandidate& candidate) const
+void RoiFilter::doubtComposedTop(bool plain, BrickCandidate& candidate) const
 {
+  if (!candidate.complete || plain) return;
   const BrickType* smaller = smallerTypeTiling(catalogue_.types(), candidate.type_name, params_.dimensions.tolerance_m);
-  if (!smaller || measureColourUniformity(frame, candidate.mask, candidate.bounding_box_px, params_.uniformity).uniform)
-    return;
+  if (!smaller) return;
   candidate.complete = false;
   candidate.partial_reason =
       "its top is also " + smaller->name + " tops touching, and on a printed face their seam need not show";
