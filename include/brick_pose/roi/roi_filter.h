@@ -148,9 +148,10 @@ private:
                                         BrickCandidate& candidate) const;
   /// Colour-free: a complete face whose top smaller catalogue tops also
   /// make up (two box_small side by side are a box_large) is one brick only
-  /// where the seam between them would show, as a line on a `plain` face.
-  /// On a printed one it is made partial with the reason.
-  void doubtComposedTop(bool plain, BrickCandidate& candidate) const;
+  /// where the seam between them would show, as a line on a `plain` face,
+  /// and does not (no trace of kFaintSeamStrength where they would meet).
+  /// On a printed face, or with a trace, it is made partial with the reason.
+  void doubtComposedTop(const RgbdFrame& frame, bool plain, BrickCandidate& candidate) const;
   /// Sets `complete` and `partial_reason` of a typed candidate;
   /// `uniform_colour`: found by its plate colour, so a dark line along an
   /// edge is a seam (on printed boxes it may be print).

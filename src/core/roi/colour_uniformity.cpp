@@ -29,8 +29,8 @@ ColourUniformity measureColourUniformity(const RgbdFrame& frame, const cv::Mat& 
   const int block = std::max(1, params.block_px);
   const int blocks_u = inner.cols / block, blocks_v = inner.rows / block;
   if (blocks_u == 0 || blocks_v == 0) return result;
-  const int step = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(blocks_u) * blocks_v /
-                                                          std::max(1, params.max_samples))));
+  const int step = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(blocks_u) * blocks_v /
+                                                                    std::max(1, params.max_samples)))));
   std::vector<double> grey;
   for (int bv = 0; bv < blocks_v; bv += step)
     for (int bu = 0; bu < blocks_u; bu += step)

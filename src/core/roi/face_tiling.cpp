@@ -668,6 +668,34 @@ void FaceTilingParams::validate() const
 
 namespace
 {
+/// A tile starts where an earlier one's cut ended it, so that cut is its
+/// edge too: marked cut on the later tile, seen as it was seen on the
+/// earlier one (the tiling's counts keep each cut once).
+void markSharedCuts(const std::vector<Tiler::Placed>& placed, FaceTiling& tiling)
+{
+  // Edge k of a rectangle lies on line (s = i0, t = j0, s = i1, t = j1)[k]
+  // and spans the other axis.
+  auto line = [](const CellRect& r, int k) { return k == 0 ? r.i0 : k == 1 ? r.j0 : k == 2 ? r.i1 : r.j1; };
+  auto overlap = [](const CellRect& a, const CellRect& b, int k) {
+    return k % 2 == 0 ? std::min(a.j1, b.j1) > std::max(a.j0, b.j0) : std::min(a.i1, b.i1) > std::max(a.i0, b.i0);
+  };
+  for (std::size_t a = 1; a < placed.size(); ++a)
+    for (int k = 0; k < 4; ++k)
+    {
+      FaceTile& tile = tiling.tiles[a];
+      if (tile.cut[k]) continue;
+      const int facing = (k + 2) % 4;
+      for (std::size_t b = 0; b < a; ++b)
+        if (tiling.tiles[b].cut[facing] && line(placed[b].rect, facing) == line(placed[a].rect, k) &&
+            overlap(placed[a].rect, placed[b].rect, k))
+        {
+          // Seen only where every stretch of it was.
+          tile.seam_seen[k] = (tile.cut[k] ? tile.seam_seen[k] : true) && tiling.tiles[b].seam_seen[facing];
+          tile.cut[k] = true;
+        }
+    }
+}
+
 /// The placed tiles as a FaceTiling: corners, cuts, seams confirmed along
 /// each cut, and the tiles' pixels.
 FaceTiling describeTiling(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
@@ -716,6 +744,7 @@ FaceTiling describeTiling(const RgbdFrame& frame, const Segment& segment, const 
     face.segment = tileSegment(frame, segment, face.corners_m);
     tiling.tiles.push_back(std::move(face));
   }
+  markSharedCuts(placed, tiling);
   return tiling;
 }
 }  // namespace

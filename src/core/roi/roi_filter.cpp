@@ -96,12 +96,20 @@ constexpr double kCornerBorderMarginPx = 2.5;
 constexpr double kFaintSeamStrength = 5.0;
 constexpr double kPairedSeamStrength = 4.0;
 
+/// Smaller catalogue tops that make up a larger one: `type`, `along` of
+/// them along its length and `across` along its width.
+struct Composition
+{
+  const BrickType* type = nullptr;
+  int along = 0, across = 0;
+};
+
 /// A smaller catalogue type whose tops, two or more in a grid, make up the
-/// top of type `name` within `tolerance_m`; null when none does.
-const BrickType* smallerTypeTiling(const std::vector<BrickType>& types, const std::string& name, double tolerance_m)
+/// top of type `name` within `tolerance_m`; no type when none does.
+Composition smallerTypeTiling(const std::vector<BrickType>& types, const std::string& name, double tolerance_m)
 {
   const auto whole = std::find_if(types.begin(), types.end(), [&](const BrickType& t) { return t.name == name; });
-  if (whole == types.end()) return nullptr;
+  if (whole == types.end()) return {};
   auto multiple = [&](double total_m, double part_m) {
     const int count = roundToInt(total_m / part_m);
     return count >= 1 && std::abs(total_m - count * part_m) <= tolerance_m ? count : 0;
@@ -114,16 +122,41 @@ const BrickType* smallerTypeTiling(const std::vector<BrickType>& types, const st
       const double along_m = turned ? part.width_m : part.length_m;
       const double across_m = turned ? part.length_m : part.width_m;
       const int n = multiple(whole->length_m, along_m), m = multiple(whole->width_m, across_m);
-      if (n * m >= 2) return &part;
+      if (n * m >= 2) return {&part, n, m};
     }
   }
-  return nullptr;
+  return {};
+}
+
+/// The strongest seam trace (standard errors) along the lines where the
+/// smaller tops of `composition` would meet inside a face with corners
+/// `c` (c0 -> c1 along its length).
+double strongestCompositionSeam(const RgbdFrame& frame, const PlaneFit& plane, const std::array<Eigen::Vector3d, 4>& c,
+                                const Composition& composition, const EdgeEvidenceParams& params)
+{
+  double strongest = 0.0;
+  auto score = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    strongest = std::max(strongest,
+                         scoreSeam(frame, plane, frame.camera.project(a), frame.camera.project(b), params).strength);
+  };
+  for (int k = 1; k < composition.along; ++k)
+  {
+    const double f = static_cast<double>(k) / composition.along;
+    score(c[0] + f * (c[1] - c[0]), c[3] + f * (c[2] - c[3]));
+  }
+  for (int k = 1; k < composition.across; ++k)
+  {
+    const double f = static_cast<double>(k) / composition.across;
+    score(c[0] + f * (c[3] - c[0]), c[1] + f * (c[2] - c[1]));
+  }
+  return strongest;
 }
 
 /// Whether a colour-free plane is a raised layer worth tiling rather than
 /// the ground or a table: it ends at real edges on three sides, or on two
-/// with the others at the image border (a row longer than the view: its
-/// bricks wholly in view are whole tops). A face hidden under an occluder on
+/// opposite ones with the others at the image border (a row longer than the
+/// view: its bricks wholly in view are whole tops; a floor filling an image
+/// corner is not one). A face hidden under an occluder on
 /// two sides gives only bricks cut off by it.
 bool isRaisedLayer(const EdgeKinds& kinds)
 {
@@ -133,7 +166,9 @@ bool isRaisedLayer(const EdgeKinds& kinds)
     real_edges += isRealEdge(kind) ? 1 : 0;
     border_edges += kind == EdgeKind::kImageBorder ? 1 : 0;
   }
-  return real_edges >= 3 || (real_edges >= 2 && real_edges + border_edges == 4);
+  const bool opposite_borders = (kinds[0] == EdgeKind::kImageBorder && kinds[2] == EdgeKind::kImageBorder) ||
+                                (kinds[1] == EdgeKind::kImageBorder && kinds[3] == EdgeKind::kImageBorder);
+  return real_edges >= 3 || (real_edges == 2 && border_edges == 2 && opposite_borders);
 }
 
 /// Per tile, whether it is plain (see colour_uniformity.h), and so is the
@@ -144,8 +179,8 @@ std::vector<char> plainTiles(const RgbdFrame& frame, const Segment& segment, con
                              const ColourUniformityParams& params)
 {
   std::vector<char> plain(tiling.tiles.size(), 0);
-  if (measureColourUniformity(frame, segment.mask, segment.bounding_box_px, params).sigma_grey > params.max_sigma_grey)
-    return plain;
+  const ColourUniformity face = measureColourUniformity(frame, segment.mask, segment.bounding_box_px, params);
+  if (face.samples == 0 || face.sigma_grey > params.max_sigma_grey) return plain;
   for (std::size_t k = 0; k < tiling.tiles.size(); ++k)
   {
     const Segment& tile = tiling.tiles[k].segment;
@@ -454,7 +489,8 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
         std::any_of(candidate.edge_kinds.begin(), candidate.edge_kinds.end(),
                     [](EdgeKind kind) { return kind == EdgeKind::kSeam || kind == EdgeKind::kColourLine; });
     if (candidate.complete && segment.type_name.empty() && touches_a_neighbour)
-      doubtComposedTop(measureColourUniformity(frame, candidate.mask, candidate.bounding_box_px, params_.uniformity)
+      doubtComposedTop(frame,
+                       measureColourUniformity(frame, candidate.mask, candidate.bounding_box_px, params_.uniformity)
                            .uniform,
                        candidate);
     outcome.candidates.push_back(std::move(candidate));
@@ -660,7 +696,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
     // and boxes lying on a side are its rivals, as for any colour-free face.
     if (!reason && typed_by_size) reason = typeBySize(frame, context, candidate);
     if (!reason) judgeCompleteness(frame, context, !typed_by_size || plain[k], candidate);
-    if (!reason && typed_by_size) doubtComposedTop(plain[k] != 0, candidate);
+    if (!reason && typed_by_size) doubtComposedTop(frame, plain[k] != 0, candidate);
   });
   RoiOutcome outcome;
   outcome.candidates.reserve(tiling.tiles.size());  // a growing vector would copy the candidates
@@ -838,14 +874,20 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
   return std::nullopt;
 }
 
-void RoiFilter::doubtComposedTop(bool plain, BrickCandidate& candidate) const
+void RoiFilter::doubtComposedTop(const RgbdFrame& frame, bool plain, BrickCandidate& candidate) const
 {
-  if (!candidate.complete || plain) return;
-  const BrickType* smaller = smallerTypeTiling(catalogue_.types(), candidate.type_name, params_.dimensions.tolerance_m);
-  if (!smaller) return;
+  if (!candidate.complete) return;
+  const Composition composition =
+      smallerTypeTiling(catalogue_.types(), candidate.type_name, params_.dimensions.tolerance_m);
+  if (!composition.type) return;
+  // On a plain face the seam shows, or its trace does.
+  if (plain && strongestCompositionSeam(frame, candidate.plane, candidate.corners_m, composition, params_.edges) <
+                   kFaintSeamStrength)
+    return;
   candidate.complete = false;
-  candidate.partial_reason =
-      "its top is also " + smaller->name + " tops touching, and on a printed face their seam need not show";
+  candidate.partial_reason = "its top is also " + composition.type->name + " tops touching, and " +
+                             (plain ? std::string("a line (or a trace of one) crosses it where they would meet")
+                                    : std::string("on a printed face their seam need not show"));
 }
 
 void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& context, bool uniform_colour,
