@@ -59,6 +59,14 @@ double worstCornerErrorM(const std::vector<BrickCandidate>& candidates, const te
   return worst;
 }
 
+/// A front end without colour: region growing, types told by size.
+FrontEndParams colourFreeParams()
+{
+  FrontEndParams params;
+  params.mode = SegmentationMode::kRegionGrowing;
+  return params;
+}
+
 /// The union of the plates measured as one face: plane and outer corners.
 BrickCandidate measuredUnion(const test::TouchingPlatesScene& scene)
 {
@@ -146,8 +154,7 @@ TEST(FaceTiling, ColourFreeTwoRedsEndToEndWithASeamAreNotOneGreen)
   scene.plates = {{{-0.3, -0.1}, {0.0, 0.1}, {140, 120, 90}}, {{0.0, -0.1}, {0.3, 0.1}, {140, 120, 90}}};
   scene.line_darkening = 50.0;
   scene.groove_depth_m = 0.002;
-  FrontEndParams params;
-  params.mode = SegmentationMode::kRegionGrowing;
+  const FrontEndParams params = colourFreeParams();
   const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
   ASSERT_EQ(result.candidates.size(), 2u);
   for (const BrickCandidate& c : result.candidates)
@@ -171,8 +178,7 @@ TEST(FaceTiling, ColourFreeGreenSizedFaceWithAFaintLineWhereTwoRedsWouldMeetIsPa
   test::TouchingPlatesScene scene = rowScene(1, 0.6, 0.2);
   scene.plates = {{{-0.3, -0.1}, {0.0, 0.1}, {140, 120, 90}}, {{0.0, -0.1}, {0.3, 0.1}, {140, 120, 90}}};
   scene.line_darkening = 10.0;
-  FrontEndParams params;
-  params.mode = SegmentationMode::kRegionGrowing;
+  const FrontEndParams params = colourFreeParams();
   const FrontEndResult faint = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
   ASSERT_EQ(faint.candidates.size(), 1u);
   EXPECT_EQ(faint.candidates[0].type_name, "green");
@@ -195,8 +201,7 @@ TEST(FaceTiling, MixedLayerOfAGreenAndTwoRedsIsTiledWithBothSizes)
                   {{0.0, 0.0}, {0.3, 0.2}, cardboard}};
   scene.line_darkening = 50.0;
   scene.groove_depth_m = 0.002;
-  FrontEndParams params;
-  params.mode = SegmentationMode::kRegionGrowing;
+  const FrontEndParams params = colourFreeParams();
   const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
   ASSERT_EQ(result.candidates.size(), 3u);
   int reds = 0, greens = 0;
@@ -243,8 +248,7 @@ TEST(FaceTiling, ColourFreeTouchingBricksAreCutAtDarkSeamsAndCompleteWhenPlain)
   for (auto& plate : scene.plates) plate.rgb = cv::Vec3b(200, 60, 50);
   scene.line_darkening = 40.0;
   scene.line_half_width_m = 0.002;  // two rounded edges of 2 mm
-  FrontEndParams params;
-  params.mode = SegmentationMode::kRegionGrowing;
+  const FrontEndParams params = colourFreeParams();
   const FrontEnd front_end(BrickCatalogue::mbzirc2020(), params);
   const FrontEndResult seamed = front_end.process(scene.frame());
   ASSERT_EQ(seamed.candidates.size(), 3u);
@@ -280,8 +284,7 @@ TEST(FaceTiling, ColourFreeTilingPrefersTheSizesItsSeamsDraw)
                   {{0.0, 0.0}, {0.3, 0.2}, plain}};
   scene.line_darkening = 40.0;
   scene.line_half_width_m = 0.002;
-  FrontEndParams params;
-  params.mode = SegmentationMode::kRegionGrowing;
+  const FrontEndParams params = colourFreeParams();
   const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
   ASSERT_EQ(result.candidates.size(), 4u);
   for (const BrickCandidate& c : result.candidates)
@@ -309,8 +312,7 @@ TEST(FaceTiling, ColourFreeTopThatSmallerBoxesMakeUpIsCompleteOnlyWhenPlain)
   scene.line_darkening = 40.0;
   scene.line_half_width_m = 0.002;
   scene.groove_depth_m = 0.005;  // a gap of a few mm: a real edge, print or not
-  FrontEndParams params;
-  params.mode = SegmentationMode::kRegionGrowing;
+  const FrontEndParams params = colourFreeParams();
   const FrontEnd front_end(boxes, params);
   auto large = [](const FrontEndResult& result) -> const BrickCandidate* {
     for (const BrickCandidate& c : result.candidates)

@@ -151,7 +151,9 @@ private:
   /// where the seam between them would show, as a line on a `plain` face,
   /// and does not (no trace of kFaintSeamStrength where they would meet).
   /// On a printed face, or with a trace, it is made partial with the reason.
-  void doubtComposedTop(const RgbdFrame& frame, bool plain, BrickCandidate& candidate) const;
+  /// Without `plain`, the face's own pixels are read, and only for a top
+  /// that smaller ones make up.
+  void doubtComposedTop(const RgbdFrame& frame, std::optional<bool> plain, BrickCandidate& candidate) const;
   /// Sets `complete` and `partial_reason` of a typed candidate;
   /// `uniform_colour`: found by its plate colour, so a dark line along an
   /// edge is a seam (on printed boxes it may be print).

@@ -105,23 +105,21 @@ struct Composition
 };
 
 /// A smaller catalogue type whose tops, two or more in a grid, make up the
-/// top of type `name` within `tolerance_m`; no type when none does.
-Composition smallerTypeTiling(const std::vector<BrickType>& types, const std::string& name, double tolerance_m)
+/// top of `whole` within `tolerance_m`; no type when none does.
+Composition smallerTypeTiling(const std::vector<BrickType>& types, const BrickType& whole, double tolerance_m)
 {
-  const auto whole = std::find_if(types.begin(), types.end(), [&](const BrickType& t) { return t.name == name; });
-  if (whole == types.end()) return {};
   auto multiple = [&](double total_m, double part_m) {
     const int count = roundToInt(total_m / part_m);
     return count >= 1 && std::abs(total_m - count * part_m) <= tolerance_m ? count : 0;
   };
   for (const BrickType& part : types)
   {
-    if (part.length_m * part.width_m >= 0.9 * whole->length_m * whole->width_m) continue;
+    if (part.length_m * part.width_m >= 0.9 * whole.length_m * whole.width_m) continue;
     for (const bool turned : {false, true})
     {
       const double along_m = turned ? part.width_m : part.length_m;
       const double across_m = turned ? part.length_m : part.width_m;
-      const int n = multiple(whole->length_m, along_m), m = multiple(whole->width_m, across_m);
+      const int n = multiple(whole.length_m, along_m), m = multiple(whole.width_m, across_m);
       if (n * m >= 2) return {&part, n, m};
     }
   }
@@ -488,11 +486,7 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
     const bool touches_a_neighbour =
         std::any_of(candidate.edge_kinds.begin(), candidate.edge_kinds.end(),
                     [](EdgeKind kind) { return kind == EdgeKind::kSeam || kind == EdgeKind::kColourLine; });
-    if (candidate.complete && segment.type_name.empty() && touches_a_neighbour)
-      doubtComposedTop(frame,
-                       measureColourUniformity(frame, candidate.mask, candidate.bounding_box_px, params_.uniformity)
-                           .uniform,
-                       candidate);
+    if (segment.type_name.empty() && touches_a_neighbour) doubtComposedTop(frame, std::nullopt, candidate);
     outcome.candidates.push_back(std::move(candidate));
     return outcome;
   }
@@ -573,12 +567,12 @@ FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& seg
   // cuts are seen, the one with most such tiles wins: a row of greens
   // tiled as reds cuts each green where no seam is, and tiled as oranges
   // leaves their seams inside its tiles.
+  auto area = [](const BrickType& type) { return type.length_m * type.width_m; };
   std::vector<std::vector<const BrickType*>> type_sets{types};
   std::vector<std::vector<const BrickType*>> single;
   for (const BrickType* type : types) single.push_back({type});
-  std::stable_sort(single.begin(), single.end(), [](const auto& a, const auto& b) {
-    return a.front()->length_m * a.front()->width_m < b.front()->length_m * b.front()->width_m;
-  });
+  std::stable_sort(single.begin(), single.end(),
+                   [&](const auto& a, const auto& b) { return area(*a.front()) < area(*b.front()); });
   if (types.size() > 1) type_sets.insert(type_sets.end(), single.begin(), single.end());
   // Every tile drawn by seams and the face covered: the tiler, which
   // avoids seams inside its tiles, found the finest tiling there is; and a
@@ -592,7 +586,6 @@ FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& seg
   // are such, and this keeps them to one tiling.
   // A type alone larger than every brick the mixed tiling drew with seams
   // can only leave those seams inside its tiles.
-  auto area = [](const BrickType& type) { return type.length_m * type.width_m; };
   auto wanted = [&](std::size_t set, const std::vector<FaceTiling>& made) {
     if (set == 0) return true;
     const FaceTiling& mixed = made.front();
@@ -874,20 +867,23 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
   return std::nullopt;
 }
 
-void RoiFilter::doubtComposedTop(const RgbdFrame& frame, bool plain, BrickCandidate& candidate) const
+void RoiFilter::doubtComposedTop(const RgbdFrame& frame, std::optional<bool> plain, BrickCandidate& candidate) const
 {
   if (!candidate.complete) return;
-  const Composition composition =
-      smallerTypeTiling(catalogue_.types(), candidate.type_name, params_.dimensions.tolerance_m);
+  const BrickType* type = catalogue_.find(candidate.type_name);
+  if (!type) return;
+  const Composition composition = smallerTypeTiling(catalogue_.types(), *type, params_.dimensions.tolerance_m);
   if (!composition.type) return;
+  if (!plain)
+    plain = measureColourUniformity(frame, candidate.mask, candidate.bounding_box_px, params_.uniformity).uniform;
   // On a plain face the seam shows, or its trace does.
-  if (plain && strongestCompositionSeam(frame, candidate.plane, candidate.corners_m, composition, params_.edges) <
-                   kFaintSeamStrength)
+  if (*plain && strongestCompositionSeam(frame, candidate.plane, candidate.corners_m, composition, params_.edges) <
+                    kFaintSeamStrength)
     return;
   candidate.complete = false;
   candidate.partial_reason = "its top is also " + composition.type->name + " tops touching, and " +
-                             (plain ? std::string("a line (or a trace of one) crosses it where they would meet")
-                                    : std::string("on a printed face their seam need not show"));
+                             (*plain ? std::string("a line (or a trace of one) crosses it where they would meet")
+                                     : std::string("on a printed face their seam need not show"));
 }
 
 void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& context, bool uniform_colour,
