@@ -215,6 +215,23 @@ TEST(FaceTiling, MixedLayerOfAGreenAndTwoRedsIsTiledWithBothSizes)
   EXPECT_LT(worstCornerErrorM(result.candidates, scene), 0.02);
 }
 
+TEST(FaceTiling, OffsetBricksEndToEndAreTiledAlongTheirOwnAxes)
+{
+  // Two reds end to end, the second moved half its width sideways: a
+  // Z-shaped outline whose least-area quad is a parallelogram tilted 18
+  // degrees from the bricks, on whose axes no red fits (checked: no tile
+  // at all on the quad's axes).
+  test::TouchingPlatesScene scene = rowScene(1, 0.3, 0.2);
+  const cv::Vec3b red(200, 30, 30);
+  scene.plates = {{{-0.3, -0.1}, {0.0, 0.1}, red}, {{0.0, 0.0}, {0.3, 0.2}, red}};
+  scene.line_darkening = 40.0;
+  scene.groove_depth_m = 0.002;
+  const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020()).process(scene.frame());
+  ASSERT_EQ(result.candidates.size(), 2u);
+  for (const BrickCandidate& c : result.candidates) EXPECT_EQ(c.type_name, "red");
+  EXPECT_LT(worstCornerErrorM(result.candidates, scene), 0.02);
+}
+
 /// Dark print on each plate (a label and two stripes), as on a printed box.
 void printOnPlates(const test::TouchingPlatesScene& scene, RgbdFrame& frame)
 {
@@ -333,6 +350,31 @@ TEST(FaceTiling, ColourFreeTopThatSmallerBoxesMakeUpIsCompleteOnlyWhenPlain)
   EXPECT_FALSE(printed_large->complete);
   EXPECT_NE(printed_large->partial_reason.find("box_small tops touching"), std::string::npos)
       << printed_large->partial_reason;
+}
+
+TEST(FaceTiling, ColourFreeLoneTopThatSmallerBoxesMakeUpIsPartialWhereTheirSeamShows)
+{
+  // Two box_smalls side by side on their own (every outer edge a step down)
+  // make a box_large top; a dark line runs where they meet. Printed, and
+  // with nothing touching them, no box_large may be complete. A box_large
+  // alone, with no line across it, is.
+  const BrickCatalogue boxes = BrickCatalogue::fromYamlFile(BRICK_POSE_SOURCE_DIR "/config/boxes.yaml");
+  test::TouchingPlatesScene scene = rowScene(1, 0.6, 0.2);
+  const cv::Vec3b kraft(180, 140, 100);
+  scene.plates = {{{-0.15, -0.2}, {0.15, 0.0}, kraft}, {{-0.15, 0.0}, {0.15, 0.2}, kraft}};
+  scene.line_darkening = 30.0;
+  const FrontEnd front_end(boxes, colourFreeParams());
+  RgbdFrame pair_frame = scene.frame();
+  printOnPlates(scene, pair_frame);
+  const FrontEndResult pair = front_end.process(pair_frame);
+  for (const BrickCandidate& c : pair.candidates)
+    EXPECT_FALSE(c.complete && c.type_name == "box_large") << "two box_smalls published as one complete box_large";
+
+  scene.plates = {{{-0.15, -0.2}, {0.15, 0.2}, kraft}};
+  const FrontEndResult lone = front_end.process(scene.frame());
+  ASSERT_EQ(lone.candidates.size(), 1u);
+  EXPECT_EQ(lone.candidates[0].type_name, "box_large");
+  EXPECT_TRUE(lone.candidates[0].complete) << lone.candidates[0].partial_reason;
 }
 
 TEST(FaceTiling, ParameterChecks)

@@ -5,13 +5,16 @@
 // into bricks by hypothesising how the catalogue's rectangles tile it.
 //
 // The segment is rasterised on its own plane (cells of a few millimetres,
-// axes along its least-area quad). Tiles are placed one at a time, each
+// axes along its least-area quad, or along its outline's straight stretches
+// where the two disagree: see outline_axis.h). Tiles are placed one at a time, each
 // anchored at a corner of the region still untiled (the quad's corners
 // first, then the corners earlier tiles leave), in every catalogue size and
 // both orientations. A tile's far edges are moved, within the dimension
 // tolerance, to the line the image supports best: a seam (a groove in depth
 // or a dark line in colour, averaged along the whole line so that a
-// millimetre-deep crease under several millimetres of noise still shows) or
+// millimetre-deep crease under several millimetres of noise still shows,
+// and compared with the lines beside it, so that a noisier region of the
+// face does not pass for a seam) or
 // the region's own boundary. The tile whose edges the image supports best
 // is kept, and the search goes on until nothing more fits. Corner anchoring
 // tiles rows, grids and the pinwheel patterns of pallets alike.

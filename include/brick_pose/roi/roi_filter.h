@@ -150,10 +150,14 @@ private:
   /// make up (two box_small side by side are a box_large) is one brick only
   /// where the seam between them would show, as a line on a `plain` face,
   /// and does not (no trace of kFaintSeamStrength where they would meet).
-  /// On a printed face, or with a trace, it is made partial with the reason.
+  /// In a layer (`in_layer`: the face touches a neighbour on its plane), a
+  /// printed face, or one with a trace, is made partial with the reason. A
+  /// face standing alone is doubted only for a trace: its print is not
+  /// read (a lone box is the likelier reading there).
   /// Without `plain`, the face's own pixels are read, and only for a top
-  /// that smaller ones make up.
-  void doubtComposedTop(const RgbdFrame& frame, std::optional<bool> plain, BrickCandidate& candidate) const;
+  /// that smaller ones make up in a layer.
+  void doubtComposedTop(const RgbdFrame& frame, std::optional<bool> plain, bool in_layer,
+                        BrickCandidate& candidate) const;
   /// Sets `complete` and `partial_reason` of a typed candidate;
   /// `uniform_colour`: found by its plate colour, so a dark line along an
   /// edge is a seam (on printed boxes it may be print).

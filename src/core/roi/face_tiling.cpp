@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <set>
 
 #include <opencv2/imgproc.hpp>
@@ -10,6 +11,7 @@
 #include "brick_pose/common/errors.h"
 #include "brick_pose/common/rounding.h"
 #include "brick_pose/roi/cell_counts.h"
+#include "brick_pose/roi/outline_axis.h"
 
 namespace brick_pose
 {
@@ -23,6 +25,9 @@ enum CellState : std::uint8_t
   kOffImage = 3,
 };
 
+/// The quad's axes are kept within this of the outline's (see gridAxis).
+constexpr double kMaxQuadOffOutlineRad = 2.0 * 3.14159265358979323846 / 180.0;
+
 double median(std::vector<double> values)
 {
   if (values.empty()) return 0.0;
@@ -32,44 +37,82 @@ double median(std::vector<double> values)
 }
 
 /// Seam dips sampled along the lines of one direction of the grid. Line `l`
-/// (0..lines-1) has `length` samples; prefix sums give the mean over any
-/// stretch in constant time.
+/// (0..lines-1) has `length` samples; integral images over lines and
+/// positions give the mean over any stretch of one line, or of a band of
+/// lines, in constant time.
 struct LineEvidence
 {
   int lines = 0;
   int length = 0;
-  // Per channel (0 depth, 1 grey): clipped dips minus the typical dip, and counts.
-  std::array<std::vector<double>, 2> prefix_sum;
-  std::array<std::vector<int>, 2> prefix_count;
+  // Per channel (0 depth, 1 grey): sums of the clipped dips minus the
+  // typical dip over lines [0, l) and positions [0, p), and their counts.
+  std::array<std::vector<double>, 2> integral_sum;
+  std::array<std::vector<int>, 2> integral_count;
   std::array<double, 2> sigma{{0.0, 0.0}};
 
   int at(int line, int position) const { return line * (length + 1) + position; }
 
-  /// Mean dip over samples [from, to) of `line` and its count.
-  double mean(int channel, int line, int from, int to, int& count) const
+  /// Mean dip over lines [first, last) and samples [from, to), and its count.
+  double bandMean(int channel, int first, int last, int from, int to, int& count) const
   {
+    first = std::max(0, first);
+    last = std::min(lines, last);
     from = std::max(0, from);
     to = std::min(length, to);
-    if (line < 0 || line >= lines || to <= from)
+    if (last <= first || to <= from)
     {
       count = 0;
       return 0.0;
     }
-    count = prefix_count[channel][at(line, to)] - prefix_count[channel][at(line, from)];
-    return count > 0 ? (prefix_sum[channel][at(line, to)] - prefix_sum[channel][at(line, from)]) / count : 0.0;
+    auto block = [&](const auto& integral) {
+      return integral[at(last, to)] - integral[at(last, from)] - integral[at(first, to)] + integral[at(first, from)];
+    };
+    count = block(integral_count[channel]);
+    return count > 0 ? block(integral_sum[channel]) / count : 0.0;
   }
+
+  /// Mean dip over samples [from, to) of `line` and its count.
+  double mean(int channel, int line, int from, int to, int& count) const
+  {
+    return bandMean(channel, line, line + 1, from, to, count);
+  }
+
+  /// The mean dip of `line` over [from, to) above that of the lines a few
+  /// cells to either side over the same stretch. The lowest sample of a
+  /// window dips more where the face is noisier (farther, darker, more
+  /// steeply seen), so a whole region of lines can dip by more than the
+  /// smallest seam; a seam dips below its own neighbours.
+  double contrast(int channel, int line, int from, int to, int& count) const
+  {
+    const double own = mean(channel, line, from, to, count);
+    if (count == 0) return 0.0;
+    int before = 0, after = 0;
+    const double mean_before = bandMean(channel, line - kBackgroundOuter, line - kBackgroundInner + 1, from, to, before);
+    const double mean_after = bandMean(channel, line + kBackgroundInner, line + kBackgroundOuter + 1, from, to, after);
+    if (before + after == 0) return own;
+    return own - (mean_before * before + mean_after * after) / (before + after);
+  }
+
+  /// The neighbours a line is compared with lie this many lines away: past
+  /// the seam's own band (two cells of dark line at 720p, spread by the
+  /// window over up to four at VGA, flanked by lines it lifts) and close
+  /// enough to share its noise. Three to eight found every brick of the
+  /// rig's touching rows at 720p but cost pallet boxes at 848x480 and VGA.
+  static constexpr int kBackgroundInner = 5;
+  static constexpr int kBackgroundOuter = 12;
 };
 
 /// The segment rasterised on its plane.
 class PlaneGrid
 {
 public:
-  PlaneGrid(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured, double cell_m_min,
-            int max_cells)
+  /// The grid's s axis runs along `axis_s` (on the plane).
+  PlaneGrid(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+            const Eigen::Vector3d& axis_s, double cell_m_min, int max_cells)
     : frame_(frame), plane_(measured.plane)
   {
     const auto& c = measured.corners_m;
-    e1_ = (c[1] - c[0]).normalized();
+    e1_ = axis_s.normalized();
     e2_ = plane_.normal.cross(e1_).normalized();
     if (e2_.dot(c[3] - c[0]) < 0.0) e2_ = -e2_;
     double s_min = 1e9, s_max = -1e9, t_min = 1e9, t_max = -1e9;
@@ -227,20 +270,28 @@ LineEvidence PlaneGrid::lineEvidence(bool constant_s, int arm_px, double on_plan
     for (double& value : values) value = std::abs(value - centre);
     const double sigma = std::max(0.25 * sigma_floor[channel], 1.4826 * median(values));
     evidence.sigma[channel] = sigma;
-    auto& sums = evidence.prefix_sum[channel];
-    auto& counts = evidence.prefix_count[channel];
-    sums.assign(static_cast<std::size_t>(evidence.lines) * (evidence.length + 1), 0.0);
+    auto& sums = evidence.integral_sum[channel];
+    auto& counts = evidence.integral_count[channel];
+    sums.assign(static_cast<std::size_t>(evidence.lines + 1) * (evidence.length + 1), 0.0);
     counts.assign(sums.size(), 0);
+    const double clip = std::max(4.0 * sigma, 2.0 * sigma_floor[channel]);
     for (int line = 0; line < evidence.lines; ++line)
+    {
+      // Row line + 1 of the integral: the row above plus this line's prefix.
+      double line_sum = 0.0;
+      int line_count = 0;
       for (int k = 0; k < evidence.length; ++k)
       {
         const float value = raw[channel][static_cast<std::size_t>(line) * evidence.length + k];
-        const bool valid = !std::isnan(value);
-        const double clip = std::max(4.0 * sigma, 2.0 * sigma_floor[channel]);
-        const double clipped = valid ? std::max(-clip, std::min(clip, value - centre)) : 0.0;
-        sums[evidence.at(line, k + 1)] = sums[evidence.at(line, k)] + clipped;
-        counts[evidence.at(line, k + 1)] = counts[evidence.at(line, k)] + (valid ? 1 : 0);
+        if (!std::isnan(value))
+        {
+          line_sum += std::max(-clip, std::min(clip, value - centre));
+          ++line_count;
+        }
+        sums[evidence.at(line + 1, k + 1)] = sums[evidence.at(line, k + 1)] + line_sum;
+        counts[evidence.at(line + 1, k + 1)] = counts[evidence.at(line, k + 1)] + line_count;
       }
+    }
   }
   return evidence;
 }
@@ -458,9 +509,9 @@ private:
     const LineEvidence& evidence = constant_s ? along_s_ : along_t_;
     const double root_px = std::sqrt(std::max(1.0, grid_.cellPx()));
     int count = 0;
-    const double groove = evidence.mean(0, line, from, to, count);
+    const double groove = evidence.contrast(0, line, from, to, count);
     const double groove_z = count > 0 ? groove / (evidence.sigma[0] / (std::sqrt(count) * root_px)) : 0.0;
-    const double line_dip = evidence.mean(1, line, from, to, count);
+    const double line_dip = evidence.contrast(1, line, from, to, count);
     const double line_z = count > 0 ? line_dip / (evidence.sigma[1] / (std::sqrt(count) * root_px)) : 0.0;
     const bool groove_seen = groove >= evidence_params_.min_groove_m && groove_z >= params_.min_seam_strength;
     const bool line_seen = line_dip >= evidence_params_.min_line_contrast && line_z >= params_.min_seam_strength;
@@ -696,6 +747,22 @@ void markSharedCuts(const std::vector<Tiler::Placed>& placed, FaceTiling& tiling
     }
 }
 
+/// The direction the tiling's rectangles run along: the quad's, unless the
+/// outline's straight stretches agree on another (see outline_axis.h). On a
+/// single rectangle the two agree within a degree, and the quad, fitted to
+/// the edges, is kept.
+Eigen::Vector3d gridAxis(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured)
+{
+  const Eigen::Vector3d quad_axis = (measured.corners_m[1] - measured.corners_m[0]).normalized();
+  const std::optional<OutlineAxis> outline = dominantOutlineAxis(frame, segment, measured.plane);
+  if (!outline) return quad_axis;
+  // The angle between the two, modulo a quarter turn.
+  const Eigen::Vector3d across = measured.plane.normal.cross(quad_axis).normalized();
+  const double angle_rad = std::atan2(outline->direction.dot(across), outline->direction.dot(quad_axis));
+  const double off_rad = std::remainder(angle_rad, 0.5 * 3.14159265358979323846);
+  return std::abs(off_rad) > kMaxQuadOffOutlineRad ? outline->direction : quad_axis;
+}
+
 /// The placed tiles as a FaceTiling: corners, cuts, seams confirmed along
 /// each cut, and the tiles' pixels.
 FaceTiling describeTiling(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
@@ -766,7 +833,7 @@ std::vector<FaceTiling> tileFaceEach(const RgbdFrame& frame, const Segment& segm
 {
   std::vector<FaceTiling> tilings;
   if (!measured.plane.valid) return tilings;
-  PlaneGrid grid(frame, segment, measured, params.cell_m, params.max_cells);
+  PlaneGrid grid(frame, segment, measured, gridAxis(frame, segment, measured), params.cell_m, params.max_cells);
   const int segment_cells = grid.freeCount();
   if (segment_cells == 0) return tilings;
   const Tiler::Evidence evidence = Tiler::evidenceOf(grid, params, evidence_params);

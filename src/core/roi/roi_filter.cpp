@@ -482,11 +482,13 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
     }
     // A face that touches a neighbour on its own plane (a seam) lies in a
     // layer of boxes, where smaller ones may lie side by side in its place;
-    // a box standing alone ends at steps and creases.
+    // a box standing alone ends at steps and creases, and is doubted only
+    // where the seam of smaller ones shows (two of them on a stack end at
+    // steps too).
     const bool touches_a_neighbour =
         std::any_of(candidate.edge_kinds.begin(), candidate.edge_kinds.end(),
                     [](EdgeKind kind) { return kind == EdgeKind::kSeam || kind == EdgeKind::kColourLine; });
-    if (segment.type_name.empty() && touches_a_neighbour) doubtComposedTop(frame, std::nullopt, candidate);
+    if (segment.type_name.empty()) doubtComposedTop(frame, std::nullopt, touches_a_neighbour, candidate);
     outcome.candidates.push_back(std::move(candidate));
     return outcome;
   }
@@ -689,7 +691,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
     // and boxes lying on a side are its rivals, as for any colour-free face.
     if (!reason && typed_by_size) reason = typeBySize(frame, context, candidate);
     if (!reason) judgeCompleteness(frame, context, !typed_by_size || plain[k], candidate);
-    if (!reason && typed_by_size) doubtComposedTop(frame, plain[k] != 0, candidate);
+    if (!reason && typed_by_size) doubtComposedTop(frame, plain[k] != 0, true, candidate);
   });
   RoiOutcome outcome;
   outcome.candidates.reserve(tiling.tiles.size());  // a growing vector would copy the candidates
@@ -867,22 +869,24 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
   return std::nullopt;
 }
 
-void RoiFilter::doubtComposedTop(const RgbdFrame& frame, std::optional<bool> plain, BrickCandidate& candidate) const
+void RoiFilter::doubtComposedTop(const RgbdFrame& frame, std::optional<bool> plain, bool in_layer,
+                                 BrickCandidate& candidate) const
 {
   if (!candidate.complete) return;
   const BrickType* type = catalogue_.find(candidate.type_name);
   if (!type) return;
   const Composition composition = smallerTypeTiling(catalogue_.types(), *type, params_.dimensions.tolerance_m);
   if (!composition.type) return;
-  if (!plain)
+  const bool traced = strongestCompositionSeam(frame, candidate.plane, candidate.corners_m, composition,
+                                               params_.edges) >= kFaintSeamStrength;
+  if (!traced && !in_layer) return;
+  if (!traced && !plain)
     plain = measureColourUniformity(frame, candidate.mask, candidate.bounding_box_px, params_.uniformity).uniform;
   // On a plain face the seam shows, or its trace does.
-  if (*plain && strongestCompositionSeam(frame, candidate.plane, candidate.corners_m, composition, params_.edges) <
-                    kFaintSeamStrength)
-    return;
+  if (!traced && *plain) return;
   candidate.complete = false;
   candidate.partial_reason = "its top is also " + composition.type->name + " tops touching, and " +
-                             (*plain ? std::string("a line (or a trace of one) crosses it where they would meet")
+                             (traced ? std::string("a line (or a trace of one) crosses it where they would meet")
                                      : std::string("on a printed face their seam need not show"));
 }
 

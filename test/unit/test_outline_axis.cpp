@@ -1,0 +1,109 @@
+// The direction a segment's outline runs along, on its plane.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "brick_pose/roi/outline_axis.h"
+#include "brick_pose/segmentation/segment.h"
+
+namespace brick_pose
+{
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+
+PinholeCamera vga()
+{
+  PinholeCamera camera;
+  camera.width_px = 640;
+  camera.height_px = 480;
+  camera.fx_px = camera.fy_px = 600.0;
+  camera.cx_px = 319.5;
+  camera.cy_px = 239.5;
+  return camera;
+}
+
+/// A frame of a plane facing the camera at 1 m (only the camera is read).
+RgbdFrame frontoParallel(PlaneFit& plane)
+{
+  RgbdFrame frame;
+  frame.camera = vga();
+  frame.rgb = cv::Mat::zeros(480, 640, CV_8UC3);
+  frame.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(1.0f));
+  plane.centroid_m = Eigen::Vector3d(0.0, 0.0, 1.0);
+  plane.normal = Eigen::Vector3d(0.0, 0.0, -1.0);
+  plane.valid = true;
+  return frame;
+}
+
+/// A segment whose mask is the given polygons (image pixels) filled.
+Segment maskOf(const std::vector<std::vector<cv::Point>>& polygons)
+{
+  Segment segment;
+  segment.mask = cv::Mat::zeros(480, 640, CV_8UC1);
+  cv::fillPoly(segment.mask, polygons, cv::Scalar(255));
+  segment.bounding_box_px = cv::Rect(0, 0, 640, 480);
+  return segment;
+}
+
+/// Corners of a w x h rectangle centred on `centre`, turned by `angle_rad`.
+std::vector<cv::Point> turnedRectangle(cv::Point2d centre, double w, double h, double angle_rad)
+{
+  std::vector<cv::Point> corners;
+  for (const auto& [x, y] : {std::pair{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}})
+  {
+    const double dx = x * w, dy = y * h;
+    corners.emplace_back(static_cast<int>(std::lround(centre.x + dx * std::cos(angle_rad) - dy * std::sin(angle_rad))),
+                         static_cast<int>(std::lround(centre.y + dx * std::sin(angle_rad) + dy * std::cos(angle_rad))));
+  }
+  return corners;
+}
+
+/// Angle of `direction` in the image plane, modulo a quarter turn, in degrees.
+double imageAngleDeg(const Eigen::Vector3d& direction)
+{
+  const double angle = std::atan2(direction.y(), direction.x());
+  return std::fmod(angle + 2.0 * kPi, 0.5 * kPi) * 180.0 / kPi;
+}
+
+TEST(OutlineAxis, OffsetRectanglesGiveTheirOwnAxisNotTheirHull)
+{
+  PlaneFit plane;
+  const RgbdFrame frame = frontoParallel(plane);
+  // Two 180 x 120 px rectangles side by side, the second moved 60 px along
+  // its length, all turned by 20 degrees.
+  const double turn = 20.0 * kPi / 180.0;
+  const cv::Point2d along(std::cos(turn), std::sin(turn)), across(-std::sin(turn), std::cos(turn));
+  const cv::Point2d centre(300.0, 240.0);
+  const Segment segment = maskOf({turnedRectangle(centre - 60.0 * across, 180.0, 120.0, turn),
+                                  turnedRectangle(centre + 60.0 * across + 60.0 * along, 180.0, 120.0, turn)});
+  const std::optional<OutlineAxis> axis = dominantOutlineAxis(frame, segment, plane);
+  ASSERT_TRUE(axis.has_value());
+  EXPECT_NEAR(imageAngleDeg(axis->direction), 20.0, 0.7);
+  EXPECT_NEAR(axis->direction.dot(plane.normal), 0.0, 1e-9);
+  EXPECT_GT(axis->support, 0.8);
+}
+
+TEST(OutlineAxis, ARoundOutlineHasNoAxis)
+{
+  PlaneFit plane;
+  const RgbdFrame frame = frontoParallel(plane);
+  Segment segment;
+  segment.mask = cv::Mat::zeros(480, 640, CV_8UC1);
+  cv::circle(segment.mask, cv::Point(320, 240), 120, cv::Scalar(255), cv::FILLED);
+  segment.bounding_box_px = cv::Rect(0, 0, 640, 480);
+  EXPECT_FALSE(dominantOutlineAxis(frame, segment, plane).has_value());
+}
+
+TEST(OutlineAxis, NoOutlineOrNoPlaneGivesNothing)
+{
+  PlaneFit plane;
+  const RgbdFrame frame = frontoParallel(plane);
+  EXPECT_FALSE(dominantOutlineAxis(frame, maskOf({}), plane).has_value());
+  PlaneFit invalid;
+  EXPECT_FALSE(dominantOutlineAxis(frame, maskOf({turnedRectangle({320.0, 240.0}, 100.0, 60.0, 0.3)}), invalid)
+                   .has_value());
+}
+}  // namespace
+}  // namespace brick_pose
