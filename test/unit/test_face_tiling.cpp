@@ -289,6 +289,28 @@ TEST(FaceTiling, ColourFreeTouchingBricksAreCutAtDarkSeamsAndCompleteWhenPlain)
   EXPECT_EQ(completeCount(front_end.process(scene.frame())), 0);
 }
 
+TEST(FaceTiling, ColourFreeTouchingBricksAreCutAtFaintSeamsUnderNoise)
+{
+  // The same three greens in low light: their seams are 8 grey levels
+  // under 3 levels of pixel noise. Along a 0.6 m cut that is many standard
+  // errors (the error of the mean is a fraction of a level), though 8 is
+  // little more than the smallest line (6).
+  test::TouchingPlatesScene scene = rowScene(3, 0.6, 0.2);
+  for (auto& plate : scene.plates) plate.rgb = cv::Vec3b(200, 60, 50);
+  scene.line_darkening = 8.0;
+  scene.line_half_width_m = 0.003;
+  scene.colour_noise = 3.0;
+  const FrontEnd front_end(BrickCatalogue::mbzirc2020(), colourFreeParams());
+  const FrontEndResult faint = front_end.process(scene.frame());
+  ASSERT_EQ(faint.candidates.size(), 3u);
+  for (const BrickCandidate& c : faint.candidates)
+  {
+    EXPECT_EQ(c.type_name, "green");
+    EXPECT_TRUE(c.complete) << c.partial_reason;
+  }
+  EXPECT_LT(worstCornerErrorM(faint.candidates, scene), 0.015);
+}
+
 TEST(FaceTiling, ColourFreeTilingPrefersTheSizesItsSeamsDraw)
 {
   // Two rows of two reds end to end (0.6 x 0.4): reds, greens and the
@@ -350,6 +372,28 @@ TEST(FaceTiling, ColourFreeTopThatSmallerBoxesMakeUpIsCompleteOnlyWhenPlain)
   EXPECT_FALSE(printed_large->complete);
   EXPECT_NE(printed_large->partial_reason.find("box_small tops touching"), std::string::npos)
       << printed_large->partial_reason;
+}
+
+TEST(FaceTiling, ColourFreeTopThatSmallerBoxesMakeUpIsPartialWhenTooDarkForTheirSeam)
+{
+  // The plain box_large top of ColourFreeTopThatSmallerBoxesMakeUpIsComplete-
+  // OnlyWhenPlain, in a dim light (mean grey about 30): the seam of two
+  // box_smalls in its place could be two grey levels deep, under any trace.
+  const BrickCatalogue boxes = BrickCatalogue::fromYamlFile(BRICK_POSE_SOURCE_DIR "/config/boxes.yaml");
+  test::TouchingPlatesScene scene = rowScene(1, 0.6, 0.2);
+  const cv::Vec3b dim_kraft(40, 30, 22);
+  scene.plates = {{{-0.2, -0.3}, {0.2, 0.0}, dim_kraft}, {{-0.15, 0.0}, {0.15, 0.2}, dim_kraft}};
+  scene.background_rgb = cv::Vec3b(25, 24, 22);
+  scene.line_darkening = 15.0;
+  scene.line_half_width_m = 0.002;
+  scene.groove_depth_m = 0.005;
+  const FrontEndResult result = FrontEnd(boxes, colourFreeParams()).process(scene.frame());
+  const BrickCandidate* large = nullptr;
+  for (const BrickCandidate& c : result.candidates)
+    if (c.type_name == "box_large") large = &c;
+  ASSERT_NE(large, nullptr);
+  EXPECT_FALSE(large->complete);
+  EXPECT_NE(large->partial_reason.find("too dark"), std::string::npos) << large->partial_reason;
 }
 
 TEST(FaceTiling, ColourFreeLoneTopThatSmallerBoxesMakeUpIsPartialWhereTheirSeamShows)

@@ -132,8 +132,12 @@ TEST(MosdTopFaces, OnTheLabelledFacesSideFacesAreRejectedAndWholeTopsAreComplete
   // 0.038 m) 1 cm wide, as near toppas (0.147 x 0.054 m, 0.212 vs 0.243 m
   // tall) in learn15, learn16 and learn20; toppas tops (learn2, learn13)
   // 1.3 cm wide, as near a tea box lying on a side (0.148 x 0.058 m, 7.8 cm
-  // tall). Those are found, partial, "type uncertain".
-  EXPECT_GE(found_complete, 11) << "whole catalogue tops found complete, of their type";
+  // tall). Those are found, partial, "type uncertain". The toppas lying on a
+  // side in learn8 is as much two birchermuesli tops touching, and its print
+  // draws a line where they would meet: partial, its type in doubt (a lone
+  // face of a size smaller tops make up is doubted where their seam shows,
+  // since two boxes side by side on a stack end at steps too).
+  EXPECT_GE(found_complete, 10) << "whole catalogue tops found complete, of their type";
   EXPECT_EQ(found_complete + doubtful_type, whole_tops)
       << "every whole catalogue top is found complete, of its type, or partial with its type in doubt";
 }

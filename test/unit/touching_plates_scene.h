@@ -44,6 +44,9 @@ struct TouchingPlatesScene
   double background_offset_m = 0.25;
   cv::Vec3b background_rgb{110, 105, 100};
   double depth_noise_m = 0.0015;
+  /// Grey-level noise added to every colour channel of the plates (one
+  /// draw per pixel, as a sensor's luminance noise).
+  double colour_noise = 0.0;
   unsigned seed = 3;
 
   /// Layer frame facing the camera (z toward it), turned by `yaw_rad` in the
@@ -124,8 +127,9 @@ struct TouchingPlatesScene
           const double seam_m = distanceToSeam(local.head<2>(), static_cast<int>(k));
           if (seam_m < groove_half_width_m)
             z += groove_depth_m * (1.0 - seam_m / groove_half_width_m) / std::max(1e-6, -normal.z());
-          if (seam_m < line_half_width_m)
-            for (int c = 0; c < 3; ++c) colour[c] = cv::saturate_cast<std::uint8_t>(colour[c] - line_darkening);
+          double darkening = seam_m < line_half_width_m ? line_darkening : 0.0;
+          if (colour_noise > 0.0) darkening -= colour_noise * noise(generator);
+          for (int c = 0; c < 3; ++c) colour[c] = cv::saturate_cast<std::uint8_t>(colour[c] - darkening);
           break;
         }
         depth.at<float>(v, u) = static_cast<float>(z + depth_noise_m * noise(generator));

@@ -155,7 +155,8 @@ private:
   /// face standing alone is doubted only for a trace: its print is not
   /// read (a lone box is the likelier reading there).
   /// Without `plain`, the face's own pixels are read, and only for a top
-  /// that smaller ones make up in a layer.
+  /// that smaller ones make up in a layer. A doubted face's type is in doubt
+  /// too (`type_doubt`): one brick, or several smaller ones.
   void doubtComposedTop(const RgbdFrame& frame, std::optional<bool> plain, bool in_layer,
                         BrickCandidate& candidate) const;
   /// Sets `complete` and `partial_reason` of a typed candidate;

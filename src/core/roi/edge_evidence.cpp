@@ -503,7 +503,11 @@ SeamScore scoreSeam(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::
   score.line_contrast = seam.line_contrast;
   score.samples = profile.rows;
   const double groove_strength = seam.groove_m / std::max(seam.groove_se, 0.25 * params.min_groove_m);
-  const double line_strength = seam.line_contrast / std::max(seam.line_se, 0.25 * params.min_line_contrast);
+  // The floors keep noise-free input finite. A line's is a tenth of the
+  // smallest line: at a quarter (1.5 grey levels) every clean face's line
+  // needed 9 levels to reach 6 standard errors, and a seam in low light is
+  // 7-8 levels at 0.3-0.9 levels of error.
+  const double line_strength = seam.line_contrast / std::max(seam.line_se, 0.1 * params.min_line_contrast);
   score.strength = std::max(groove_strength, line_strength);
   score.groove_seen = grooveSeen(seam, params);
   score.line_seen = lineSeen(seam, params);

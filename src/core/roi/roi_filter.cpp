@@ -94,6 +94,12 @@ constexpr double kCornerBorderMarginPx = 2.5;
 /// top scored 4.9 and 4.7 at both cuts, and no whole top of 100 frames per
 /// class had two above 3.
 constexpr double kFaintSeamStrength = 5.0;
+
+/// A plain face vouches that no seam crosses it only this bright (mean grey
+/// level): the closed seam of two of the rig's red bricks in low light (mean
+/// grey 28) is 2 levels deep, under any trace; in normal light (90) seams are
+/// 24-47 levels.
+constexpr double kMinGreyForSeamToShow = 50.0;
 constexpr double kPairedSeamStrength = 4.0;
 
 /// Smaller catalogue tops that make up a larger one: `type`, `along` of
@@ -126,26 +132,46 @@ Composition smallerTypeTiling(const std::vector<BrickType>& types, const BrickTy
   return {};
 }
 
+/// Mean grey level (0-255) of a candidate's pixels.
+double meanGrey(const RgbdFrame& frame, const BrickCandidate& candidate)
+{
+  const cv::Rect box = candidate.bounding_box_px & cv::Rect(0, 0, frame.width_px(), frame.height_px());
+  if (box.area() == 0 || candidate.mask.empty()) return 0.0;
+  const cv::Mat mask = candidate.mask(cv::Rect(box.tl() - candidate.bounding_box_px.tl(), box.size()));
+  const cv::Scalar rgb = cv::mean(frame.rgb(box), mask);
+  return (rgb[0] + rgb[1] + rgb[2]) / 3.0;
+}
+
 /// The strongest seam trace (standard errors) along the lines where the
 /// smaller tops of `composition` would meet inside a face with corners
-/// `c` (c0 -> c1 along its length).
+/// `c` (c0 -> c1 along its length). Each line is searched up to
+/// `tolerance_m` to either side: a face measured a centimetre long at one
+/// end puts its middle that far from the seam, beyond scoreSeam's own few
+/// pixels of search.
 double strongestCompositionSeam(const RgbdFrame& frame, const PlaneFit& plane, const std::array<Eigen::Vector3d, 4>& c,
-                                const Composition& composition, const EdgeEvidenceParams& params)
+                                const Composition& composition, double tolerance_m, const EdgeEvidenceParams& params)
 {
+  constexpr double kStepM = 0.01;  // scoreSeam searches 3 px, 5-8 mm at 1.5 m
   double strongest = 0.0;
-  auto score = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-    strongest = std::max(strongest,
-                         scoreSeam(frame, plane, frame.camera.project(a), frame.camera.project(b), params).strength);
+  auto scoreAround = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& across) {
+    const int steps = static_cast<int>(std::floor(tolerance_m / kStepM));
+    for (int step = -steps; step <= steps; ++step)
+    {
+      const Eigen::Vector3d shift = step * kStepM * across;
+      const SeamScore sc = scoreSeam(frame, plane, frame.camera.project(a + shift), frame.camera.project(b + shift), params);
+          strongest = std::max(strongest, sc.strength);
+    }
   };
+  const Eigen::Vector3d along_length = (c[1] - c[0]).normalized(), along_width = (c[3] - c[0]).normalized();
   for (int k = 1; k < composition.along; ++k)
   {
     const double f = static_cast<double>(k) / composition.along;
-    score(c[0] + f * (c[1] - c[0]), c[3] + f * (c[2] - c[3]));
+    scoreAround(c[0] + f * (c[1] - c[0]), c[3] + f * (c[2] - c[3]), along_length);
   }
   for (int k = 1; k < composition.across; ++k)
   {
     const double f = static_cast<double>(k) / composition.across;
-    score(c[0] + f * (c[3] - c[0]), c[1] + f * (c[2] - c[1]));
+    scoreAround(c[0] + f * (c[3] - c[0]), c[1] + f * (c[2] - c[1]), along_width);
   }
   return strongest;
 }
@@ -878,16 +904,24 @@ void RoiFilter::doubtComposedTop(const RgbdFrame& frame, std::optional<bool> pla
   const Composition composition = smallerTypeTiling(catalogue_.types(), *type, params_.dimensions.tolerance_m);
   if (!composition.type) return;
   const bool traced = strongestCompositionSeam(frame, candidate.plane, candidate.corners_m, composition,
-                                               params_.edges) >= kFaintSeamStrength;
+                                               params_.dimensions.tolerance_m, params_.edges) >= kFaintSeamStrength;
   if (!traced && !in_layer) return;
   if (!traced && !plain)
     plain = measureColourUniformity(frame, candidate.mask, candidate.bounding_box_px, params_.uniformity).uniform;
-  // On a plain face the seam shows, or its trace does.
-  if (!traced && *plain) return;
+  // On a plain face the seam shows, or its trace does, where there is light
+  // enough for it to show.
+  const bool too_dark = !traced && *plain && meanGrey(frame, candidate) < kMinGreyForSeamToShow;
+  if (!traced && *plain && !too_dark) return;
   candidate.complete = false;
-  candidate.partial_reason = "its top is also " + composition.type->name + " tops touching, and " +
-                             (traced ? std::string("a line (or a trace of one) crosses it where they would meet")
-                                     : std::string("on a printed face their seam need not show"));
+  candidate.partial_reason =
+      "its top is also " + composition.type->name + " tops touching, and " +
+      (traced     ? std::string("a line (or a trace of one) crosses it where they would meet")
+       : too_dark ? describe("the face is too dark for their seam to show (mean grey", meanGrey(frame, candidate),
+                             "levels, need", kMinGreyForSeamToShow) +
+                        ")"
+                  : std::string("on a printed face their seam need not show"));
+  // Its type is in doubt: one brick of this type, or several smaller ones.
+  candidate.type_doubt = candidate.partial_reason;
 }
 
 void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& context, bool uniform_colour,
