@@ -96,5 +96,22 @@ TEST(ColourUniformity, TooSmallAFaceSaysNothing)
   EXPECT_EQ(tiny.samples, 0);
   EXPECT_FALSE(measureColourUniformity(face.frame, cv::Mat(), face.box).uniform);
 }
+
+TEST(ColourUniformity, MeanGreyLevelReadsTheMaskedPixelsInsideTheImage)
+{
+  RgbdFrame frame;
+  frame.rgb = cv::Mat(100, 100, CV_8UC3, cv::Scalar(30, 60, 90));  // grey 60
+  frame.rgb(cv::Rect(0, 0, 50, 100)).setTo(cv::Scalar(200, 200, 200));
+  // A 40 x 40 box reaching 20 px past the right border; its mask covers
+  // its left half only (on the image: columns 60-79, grey 60).
+  cv::Mat mask = cv::Mat::zeros(40, 40, CV_8UC1);
+  mask(cv::Rect(0, 0, 20, 40)).setTo(255);
+  EXPECT_NEAR(meanGreyLevel(frame, mask, cv::Rect(60, 10, 40, 40)), 60.0, 1e-9);
+  // Moved left over the bright half: columns 40-59, half of it bright.
+  EXPECT_NEAR(meanGreyLevel(frame, mask, cv::Rect(40, 10, 40, 40)), 130.0, 1e-9);
+  // Nothing of it in the image, or no mask: 0.
+  EXPECT_EQ(meanGreyLevel(frame, mask, cv::Rect(120, 10, 40, 40)), 0.0);
+  EXPECT_EQ(meanGreyLevel(frame, cv::Mat(), cv::Rect(60, 10, 40, 40)), 0.0);
+}
 }  // namespace
 }  // namespace brick_pose

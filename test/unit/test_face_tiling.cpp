@@ -289,14 +289,15 @@ TEST(FaceTiling, ColourFreeTouchingBricksAreCutAtDarkSeamsAndCompleteWhenPlain)
   EXPECT_EQ(completeCount(front_end.process(scene.frame())), 0);
 }
 
-TEST(FaceTiling, ColourFreeTouchingBricksAreCutAtFaintSeamsUnderNoise)
+TEST(FaceTiling, ColourFreeTouchingBricksAreCutAtFaintSeamsOnlyWhereTheLightIsDim)
 {
-  // The same three greens in low light: their seams are 8 grey levels
-  // under 3 levels of pixel noise. Along a 0.6 m cut that is many standard
-  // errors (the error of the mean is a fraction of a level), though 8 is
-  // little more than the smallest line (6).
+  // The same three greens in a dim light (mean grey 62): their seams are 8
+  // grey levels under 3 levels of pixel noise. Along a 0.6 m cut that is
+  // many standard errors (the error of the mean is a fraction of a level),
+  // and 8 levels is as deep as a seam is in that light.
   test::TouchingPlatesScene scene = rowScene(3, 0.6, 0.2);
-  for (auto& plate : scene.plates) plate.rgb = cv::Vec3b(200, 60, 50);
+  for (auto& plate : scene.plates) plate.rgb = cv::Vec3b(120, 36, 30);
+  scene.background_rgb = cv::Vec3b(60, 58, 55);
   scene.line_darkening = 8.0;
   scene.line_half_width_m = 0.003;
   scene.colour_noise = 3.0;
@@ -309,6 +310,11 @@ TEST(FaceTiling, ColourFreeTouchingBricksAreCutAtFaintSeamsUnderNoise)
     EXPECT_TRUE(c.complete) << c.partial_reason;
   }
   EXPECT_LT(worstCornerErrorM(faint.candidates, scene), 0.015);
+
+  // On a bright face (mean grey 103) a seam darkens by far more; a line of
+  // 8 levels there is a crease or a mark, and cuts nothing into bricks.
+  for (auto& plate : scene.plates) plate.rgb = cv::Vec3b(200, 60, 50);
+  EXPECT_EQ(completeCount(front_end.process(scene.frame())), 0);
 }
 
 TEST(FaceTiling, ColourFreeTilingPrefersTheSizesItsSeamsDraw)
@@ -411,8 +417,12 @@ TEST(FaceTiling, ColourFreeLoneTopThatSmallerBoxesMakeUpIsPartialWhereTheirSeamS
   RgbdFrame pair_frame = scene.frame();
   printOnPlates(scene, pair_frame);
   const FrontEndResult pair = front_end.process(pair_frame);
+  ASSERT_FALSE(pair.candidates.empty());
   for (const BrickCandidate& c : pair.candidates)
+  {
     EXPECT_FALSE(c.complete && c.type_name == "box_large") << "two box_smalls published as one complete box_large";
+    if (c.type_name == "box_large") EXPECT_FALSE(c.type_doubt.empty()) << c.partial_reason;
+  }
 
   scene.plates = {{{-0.15, -0.2}, {0.15, 0.2}, kraft}};
   const FrontEndResult lone = front_end.process(scene.frame());

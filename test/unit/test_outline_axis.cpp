@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/roi/outline_axis.h"
 #include "brick_pose/segmentation/segment.h"
 
@@ -11,8 +12,6 @@ namespace brick_pose
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
-
 PinholeCamera vga()
 {
   PinholeCamera camera;
@@ -81,8 +80,19 @@ TEST(OutlineAxis, OffsetRectanglesGiveTheirOwnAxisNotTheirHull)
   const std::optional<OutlineAxis> axis = dominantOutlineAxis(frame, segment, plane);
   ASSERT_TRUE(axis.has_value());
   EXPECT_NEAR(imageAngleDeg(axis->direction), 20.0, 0.7);
-  EXPECT_NEAR(axis->direction.dot(plane.normal), 0.0, 1e-9);
   EXPECT_GT(axis->support, 0.8);
+}
+
+TEST(OutlineAxis, SidesAlongTheImageBorderDoNotVote)
+{
+  // A layer turned by 20 degrees running out of the image at its top-left
+  // corner: the two longest sides of the mask are the image's own edges.
+  PlaneFit plane;
+  const RgbdFrame frame = frontoParallel(plane);
+  const Segment segment = maskOf({turnedRectangle({40.0, 40.0}, 700.0, 500.0, 20.0 * kDegToRad)});
+  const std::optional<OutlineAxis> axis = dominantOutlineAxis(frame, segment, plane);
+  ASSERT_TRUE(axis.has_value());
+  EXPECT_NEAR(imageAngleDeg(axis->direction), 20.0, 0.7);
 }
 
 TEST(OutlineAxis, ARoundOutlineHasNoAxis)

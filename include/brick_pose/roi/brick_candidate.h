@@ -74,7 +74,8 @@ struct BrickCandidate
   /// NaN when up is unknown.
   double tilt_from_up_deg = 0.0;
   /// Why the type is a best guess, when it is: colour-free, several catalogue
-  /// types have this top and the sides seen do not rule all but one out.
+  /// types have this top and the sides seen do not rule all but one out, or
+  /// smaller catalogue tops touching make up the same face.
   /// Empty when the type is certain; a doubtful type is never complete.
   std::string type_doubt;
   /// True only when the face is seen whole as a brick's top: length and

@@ -50,4 +50,9 @@ struct ColourUniformity
 /// placed at `box` in `frame`.
 ColourUniformity measureColourUniformity(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box,
                                          const ColourUniformityParams& params = ColourUniformityParams());
+
+/// The mean grey level (0-255, the mean of R, G and B) of the pixels of
+/// `mask` placed at `box` in `frame`; 0 when none is in the image. How
+/// bright a face is sets how deep a seam across it can be.
+double meanGreyLevel(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box);
 }  // namespace brick_pose

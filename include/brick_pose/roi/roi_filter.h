@@ -153,7 +153,9 @@ private:
   /// In a layer (`in_layer`: the face touches a neighbour on its plane), a
   /// printed face, or one with a trace, is made partial with the reason. A
   /// face standing alone is doubted only for a trace: its print is not
-  /// read (a lone box is the likelier reading there).
+  /// read (a lone box is the likelier reading there). A plain face vouches
+  /// for no seam only when bright enough for one to show
+  /// (kMinGreyForSeamToShow); darker, it is partial.
   /// Without `plain`, the face's own pixels are read, and only for a top
   /// that smaller ones make up in a layer. A doubted face's type is in doubt
   /// too (`type_doubt`): one brick, or several smaller ones.

@@ -55,4 +55,13 @@ ColourUniformity measureColourUniformity(const RgbdFrame& frame, const cv::Mat& 
   result.uniform = result.sigma_grey <= params.max_sigma_grey && result.outlier_fraction <= params.max_outlier_fraction;
   return result;
 }
+double meanGreyLevel(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box)
+{
+  const cv::Rect inside = box & cv::Rect(0, 0, frame.width_px(), frame.height_px());
+  if (inside.area() == 0 || mask.empty()) return 0.0;
+  const cv::Mat inside_mask = mask(cv::Rect(inside.tl() - box.tl(), inside.size()));
+  if (cv::countNonZero(inside_mask) == 0) return 0.0;
+  const cv::Scalar rgb = cv::mean(frame.rgb(inside), inside_mask);
+  return (rgb[0] + rgb[1] + rgb[2]) / 3.0;
+}
 }  // namespace brick_pose

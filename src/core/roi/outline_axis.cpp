@@ -5,11 +5,12 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "brick_pose/common/angles.h"
+
 namespace brick_pose
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
 
 /// A straight stretch of the outline on the plane: its angle modulo a
 /// quarter turn, in [0, pi/2), and its length.
@@ -61,19 +62,24 @@ std::optional<OutlineAxis> dominantOutlineAxis(const RgbdFrame& frame, const Seg
   std::vector<Stretch> stretches;
   double total_m = 0.0;
   const cv::Point offset = segment.bounding_box_px.tl();
+  // A side along the image border is where the view ends, not a brick's
+  // edge: a layer cut off at an image corner would otherwise vote for the
+  // image's axes.
+  auto onBorder = [&](const cv::Point& p) {
+    return p.x <= 1 || p.y <= 1 || p.x >= frame.width_px() - 2 || p.y >= frame.height_px() - 2;
+  };
   for (const auto& contour : contours)
   {
     std::vector<cv::Point> polygon;
     cv::approxPolyDP(contour, polygon, params.simplify_px, true);
-    std::vector<Eigen::Vector3d> on_plane;
-    for (const cv::Point& p : polygon)
+    for (std::size_t k = 0; polygon.size() >= 2 && k < polygon.size(); ++k)
     {
-      Eigen::Vector3d hit;
-      if (plane.intersectRay(frame.camera.ray(p.x + offset.x, p.y + offset.y), hit)) on_plane.push_back(hit);
-    }
-    for (std::size_t k = 0; on_plane.size() >= 2 && k < on_plane.size(); ++k)
-    {
-      const Eigen::Vector3d along = on_plane[(k + 1) % on_plane.size()] - on_plane[k];
+      const cv::Point a = polygon[k] + offset, b = polygon[(k + 1) % polygon.size()] + offset;
+      if (onBorder(a) && onBorder(b)) continue;
+      Eigen::Vector3d a_m, b_m;
+      if (!plane.intersectRay(frame.camera.ray(a.x, a.y), a_m) || !plane.intersectRay(frame.camera.ray(b.x, b.y), b_m))
+        continue;
+      const Eigen::Vector3d along = b_m - a_m;
       const double length_m = along.norm();
       if (!(length_m > 0.0)) continue;
       double angle = std::atan2(along.dot(quarter), along.dot(zero));
@@ -84,7 +90,7 @@ std::optional<OutlineAxis> dominantOutlineAxis(const RgbdFrame& frame, const Seg
   }
   if (stretches.empty() || !(total_m > 0.0)) return std::nullopt;
   double held_m = 0.0;
-  const double angle = peakAngle(stretches, params.agree_deg * kPi / 180.0, held_m);
+  const double angle = peakAngle(stretches, params.agree_deg * kDegToRad, held_m);
   OutlineAxis axis;
   axis.support = held_m / total_m;
   if (axis.support < params.min_support) return std::nullopt;
