@@ -12,7 +12,6 @@
 #include "brick_pose/common/errors.h"
 #include "brick_pose/common/rounding.h"
 #include "brick_pose/roi/cell_counts.h"
-#include "brick_pose/roi/colour_uniformity.h"
 #include "brick_pose/roi/outline_axis.h"
 
 namespace brick_pose
@@ -26,10 +25,6 @@ enum CellState : std::uint8_t
   kTiled = 2,    // the segment, taken by a tile
   kOffImage = 3,
 };
-
-/// A line confirms a cut only this deep as a share of the face's mean grey
-/// level (see describeTiling).
-constexpr double kMinSeamLineShare = 0.1;
 
 /// The quad's axes are kept within this of the outline's (see gridAxis).
 constexpr double kMaxQuadOffOutlineRad = 2.0 * kDegToRad;
@@ -773,7 +768,7 @@ Eigen::Vector3d gridAxis(const RgbdFrame& frame, const Segment& segment, const B
 /// each cut, and the tiles' pixels.
 FaceTiling describeTiling(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
                           const PlaneGrid& grid, const std::vector<Tiler::Placed>& placed, int segment_cells,
-                          double face_grey, const EdgeEvidenceParams& evidence_params, const FaceTilingParams& params)
+                          const EdgeEvidenceParams& evidence_params, const FaceTilingParams& params)
 {
   FaceTiling tiling;
   tiling.untiled_fraction = static_cast<double>(grid.freeCount()) / segment_cells;
@@ -803,12 +798,7 @@ FaceTiling describeTiling(const RgbdFrame& frame, const Segment& segment, const 
       // nominal cut finds noise of about 4 standard errors on a plain face
       // (4.4 on a colour-free green, cut into two reds); a faint 1.5 mm groove
       // scores 7.7, a dark line 24-33 (test_face_tiling).
-      // A line alone confirms only as deep as a seam is on this face: seams
-      // darken by a share of the light (24-47 grey levels on the rig's
-      // bricks at mean grey 90, 7-8 at 28), and on a bright face a line of
-      // 6-9 levels is more likely a crease or a mark.
-      const bool deep_enough = seam.groove_seen || seam.line_contrast >= kMinSeamLineShare * face_grey;
-      const bool confirmed = seam.seen && seam.strength >= 1.5 * params.min_seam_strength && deep_enough;
+      const bool confirmed = seam.seen && seam.strength >= 1.5 * params.min_seam_strength;
       face.seam_seen[k] = confirmed;
       groove[k] = groove[k] && confirmed;
       tiling.weakest_cut_line = std::min(tiling.weakest_cut_line, seam.line_contrast);
@@ -849,7 +839,6 @@ std::vector<FaceTiling> tileFaceEach(const RgbdFrame& frame, const Segment& segm
   if (segment_cells == 0) return tilings;
   const Tiler::Evidence evidence = Tiler::evidenceOf(grid, params, evidence_params);
   const std::vector<std::uint8_t> untiled = grid.states();
-  const double face_grey = meanGreyLevel(frame, segment.mask, segment.bounding_box_px);
   for (std::size_t set = 0; set < type_sets.size(); ++set)
   {
     if (!wanted(set, tilings)) continue;
@@ -857,8 +846,7 @@ std::vector<FaceTiling> tileFaceEach(const RgbdFrame& frame, const Segment& segm
     std::vector<Tiler::Placed> placed;
     if (!type_sets[set].empty())
       placed = Tiler(grid, evidence, type_sets[set], tolerance_m, params, evidence_params).run();
-    tilings.push_back(
-        describeTiling(frame, segment, measured, grid, placed, segment_cells, face_grey, evidence_params, params));
+    tilings.push_back(describeTiling(frame, segment, measured, grid, placed, segment_cells, evidence_params, params));
   }
   return tilings;
 }
