@@ -105,13 +105,14 @@ struct PlateScene
     return makeRgbdFrame(rgb, depth, camera, header);
   }
 
-  static PinholeCamera vgaCamera()
+  /// A 640x480 camera with its principal point at the image centre.
+  static PinholeCamera vgaCamera(double focal_px = 600.0)
   {
     PinholeCamera camera;
     camera.width_px = 640;
     camera.height_px = 480;
-    camera.fx_px = 600.0;
-    camera.fy_px = 600.0;
+    camera.fx_px = focal_px;
+    camera.fy_px = focal_px;
     camera.cx_px = 319.5;
     camera.cy_px = 239.5;
     return camera;

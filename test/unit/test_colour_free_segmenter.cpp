@@ -27,18 +27,6 @@ namespace brick_pose
 {
 namespace
 {
-PinholeCamera vga()
-{
-  PinholeCamera camera;
-  camera.width_px = 640;
-  camera.height_px = 480;
-  camera.fx_px = 525.0;
-  camera.fy_px = 525.0;
-  camera.cx_px = 319.5;
-  camera.cy_px = 239.5;
-  return camera;
-}
-
 /// A plane through `point` with normal `normal` (camera frame).
 struct Plane
 {
@@ -190,7 +178,7 @@ TEST(DepthNoise, EstimateReadsTheFlatMajorityAndIsClamped)
 
 TEST(ColourFreeSegmenter, OneTiltedPlaneIsOneSegment)
 {
-  const PinholeCamera camera = vga();
+  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
   const Plane plane{{0.0, 0.0, 1.2}, Eigen::Vector3d(0.0, -0.6, -1.0).normalized()};
   const RgbdFrame frame = renderFrame(camera, [&](int u, int v) { return plane.depthAt(camera, u, v); }, 0.0015);
   ColourFreeTimings timings;
@@ -204,7 +192,7 @@ TEST(ColourFreeSegmenter, OneTiltedPlaneIsOneSegment)
 TEST(ColourFreeSegmenter, RaisedFaceAndGroundAreTwoSegmentsWithExactBorders)
 {
   // A face 0.25 m above the ground, seen from above: a depth step all round.
-  const PinholeCamera camera = vga();
+  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
   const cv::Rect face(200, 150, 220, 130);
   const RgbdFrame frame = renderFrame(
       camera, [&](int u, int v) { return face.contains({u, v}) ? 0.75 : 1.0; }, 0.0015, 3);
@@ -222,7 +210,7 @@ TEST(ColourFreeSegmenter, RaisedFaceAndGroundAreTwoSegmentsWithExactBorders)
 
 TEST(ColourFreeSegmenter, SupportingPlaneIsMarkedAndLeftOutOnRequest)
 {
-  const PinholeCamera camera = vga();
+  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
   const cv::Rect face(200, 150, 220, 130);
   const RgbdFrame frame = renderFrame(
       camera, [&](int u, int v) { return face.contains({u, v}) ? 0.75 : 1.0; }, 0.0015, 3);
@@ -244,7 +232,7 @@ TEST(ColourFreeSegmenter, TwoFacesAtNinetyDegreesAreKeptApartAtTheCrease)
 {
   // A roof: two planes at 90 degrees meeting in a vertical ridge line at
   // u = 320, each seen at 45 degrees.
-  const PinholeCamera camera = vga();
+  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
   const Plane left{{0.0, 0.0, 1.0}, Eigen::Vector3d(-1.0, 0.0, -1.0).normalized()};
   const Plane right{{0.0, 0.0, 1.0}, Eigen::Vector3d(1.0, 0.0, -1.0).normalized()};
   const RgbdFrame frame = renderFrame(
@@ -273,7 +261,7 @@ TEST(ColourFreeSegmenter, TwoFacesAtNinetyDegreesAreKeptApartAtTheCrease)
 
 TEST(ColourFreeSegmenter, ParallelFacesTwoCentimetresApartAreKeptApart)
 {
-  const PinholeCamera camera = vga();
+  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
   const cv::Rect face(180, 120, 280, 200);
   const RgbdFrame frame = renderFrame(
       camera, [&](int u, int v) { return face.contains({u, v}) ? 1.18 : 1.2; }, 0.0015, 7);
@@ -286,7 +274,7 @@ TEST(ColourFreeSegmenter, ParallelFacesTwoCentimetresApartAreKeptApart)
 
 TEST(ColourFreeSegmenter, CoplanarFacesWithGroundBetweenThemAreTwoSegments)
 {
-  const PinholeCamera camera = vga();
+  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
   const cv::Rect a(100, 150, 200, 150), b(310, 150, 200, 150);  // 10 px of ground between them
   const RgbdFrame frame = renderFrame(
       camera, [&](int u, int v) { return a.contains({u, v}) || b.contains({u, v}) ? 0.8 : 1.0; }, 0.0015, 9);
@@ -342,7 +330,7 @@ TEST(ColourFreeSegmenter, DegenerateFramesGiveNoSegmentAndNoCrash)
 {
   const ColourFreeSegmenter segmenter;
   auto flatFrame = [](cv::Size size) {
-    PinholeCamera camera = vga();
+    PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
     camera.width_px = size.width;
     camera.height_px = size.height;
     camera.cx_px = 0.5 * (size.width - 1);
@@ -359,12 +347,12 @@ TEST(ColourFreeSegmenter, DegenerateFramesGiveNoSegmentAndNoCrash)
   EXPECT_TRUE(ColourFreeSegmenter(small_area).segment(flatFrame({3, 200})).empty()) << "strip thinner than a cell";
   // All NaN depth (makeRgbdFrame refuses it, a hand-made frame may not).
   RgbdFrame empty;
-  empty.camera = vga();
+  empty.camera = test::PlateScene::vgaCamera(525.0);
   empty.rgb = cv::Mat(480, 640, CV_8UC3, cv::Scalar::all(0));
   empty.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
   EXPECT_TRUE(segmenter.segment(empty).empty());
   // Sparse depth: every third pixel only, no cell is full enough.
-  const PinholeCamera camera = vga();
+  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
   const RgbdFrame sparse = renderFrame(camera, [](int u, int v) { return (u + v) % 3 == 0 ? 1.0 : NAN; });
   EXPECT_TRUE(segmenter.segment(sparse).empty());
   // Pure noise: no planes.
@@ -376,7 +364,7 @@ TEST(ColourFreeSegmenter, DegenerateFramesGiveNoSegmentAndNoCrash)
 
 TEST(ColourFreeSegmenter, ExcludedPixelsAreLeftOut)
 {
-  const PinholeCamera camera = vga();
+  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
   const cv::Rect face(200, 150, 220, 130);
   const RgbdFrame frame = renderFrame(
       camera, [&](int u, int v) { return face.contains({u, v}) ? 0.75 : 1.0; }, 0.0015, 3);
@@ -450,7 +438,7 @@ bool loadMosd(int scene, RgbdFrame& frame, cv::Mat& labels)
   const cv::Mat depth = test::readPng(stem + "depth.png");
   labels = test::readPng(stem + "labels.png");
   if (rgb.type() != CV_8UC3 || depth.type() != CV_16UC1 || labels.type() != CV_16UC1) return false;
-  PinholeCamera camera = vga();  // camera.json: fx = fy = 525, cx = 319.5, cy = 239.5
+  PinholeCamera camera = test::PlateScene::vgaCamera(525.0);  // camera.json: fx = fy = 525, cx = 319.5, cy = 239.5
   frame = makeRgbdFrame(rgb, depth, camera, {});
   return true;
 }

@@ -10,27 +10,17 @@
 #include "brick_pose/roi/cell_counts.h"
 #include "brick_pose/roi/face_tiling.h"
 #include "brick_pose/segmentation/hsv_segmenter.h"
+#include "synthetic_plate_scene.h"
 #include "touching_plates_scene.h"
 
 namespace brick_pose
 {
 namespace
 {
-PinholeCamera vga()
-{
-  PinholeCamera camera;
-  camera.width_px = 640;
-  camera.height_px = 480;
-  camera.fx_px = camera.fy_px = 600.0;
-  camera.cx_px = 319.5;
-  camera.cy_px = 239.5;
-  return camera;
-}
-
 test::TouchingPlatesScene rowScene(int count, double length_m, double width_m)
 {
   test::TouchingPlatesScene scene;
-  scene.camera = vga();
+  scene.camera = test::PlateScene::vgaCamera();
   scene.origin_m = Eigen::Vector3d(0.02, -0.01, 1.5);
   scene.rotation = test::TouchingPlatesScene::facingCamera(0.35, 0.4);
   scene.plates = test::TouchingPlatesScene::row(count, length_m, width_m);
@@ -249,6 +239,29 @@ void printOnPlates(const test::TouchingPlatesScene& scene, RgbdFrame& frame)
   }
 }
 
+/// The first candidate of type `type_name`, or none.
+const BrickCandidate* candidateOfType(const FrontEndResult& result, const std::string& type_name)
+{
+  for (const BrickCandidate& c : result.candidates)
+    if (c.type_name == type_name) return &c;
+  return nullptr;
+}
+
+/// The box catalogue of config/boxes.yaml.
+BrickCatalogue boxCatalogue() { return BrickCatalogue::fromYamlFile(BRICK_POSE_SOURCE_DIR "/config/boxes.yaml"); }
+
+/// A box_large top (0.4 x 0.3 m) in a layer, touching a box_small (0.3 x
+/// 0.2 m) of the same `rgb` along a seam with a gap of a few mm: a real
+/// edge, print or not.
+test::TouchingPlatesScene largeBesideSmallScene(const cv::Vec3b& rgb)
+{
+  test::TouchingPlatesScene scene = rowScene(1, 0.6, 0.2);
+  scene.plates = {{{-0.2, -0.3}, {0.2, 0.0}, rgb}, {{-0.15, 0.0}, {0.15, 0.2}, rgb}};
+  scene.line_half_width_m = 0.002;
+  scene.groove_depth_m = 0.005;
+  return scene;
+}
+
 int completeCount(const FrontEndResult& result)
 {
   int complete = 0;
@@ -346,30 +359,19 @@ TEST(FaceTiling, ColourFreeTopThatSmallerBoxesMakeUpIsCompleteOnlyWhenPlain)
   // 0.2 m) along a seen seam. Two box_smalls side by side make the same top
   // with a seam across its middle: on a plain face that seam would show,
   // on a printed one it need not.
-  const BrickCatalogue boxes = BrickCatalogue::fromYamlFile(BRICK_POSE_SOURCE_DIR "/config/boxes.yaml");
-  test::TouchingPlatesScene scene = rowScene(1, 0.6, 0.2);
-  const cv::Vec3b kraft(180, 140, 100);
-  scene.plates = {{{-0.2, -0.3}, {0.2, 0.0}, kraft}, {{-0.15, 0.0}, {0.15, 0.2}, kraft}};
+  test::TouchingPlatesScene scene = largeBesideSmallScene(cv::Vec3b(180, 140, 100));
   scene.line_darkening = 40.0;
-  scene.line_half_width_m = 0.002;
-  scene.groove_depth_m = 0.005;  // a gap of a few mm: a real edge, print or not
-  const FrontEndParams params = colourFreeParams();
-  const FrontEnd front_end(boxes, params);
-  auto large = [](const FrontEndResult& result) -> const BrickCandidate* {
-    for (const BrickCandidate& c : result.candidates)
-      if (c.type_name == "box_large") return &c;
-    return nullptr;
-  };
+  const FrontEnd front_end(boxCatalogue(), colourFreeParams());
 
   const FrontEndResult plain = front_end.process(scene.frame());
-  const BrickCandidate* plain_large = large(plain);
+  const BrickCandidate* plain_large = candidateOfType(plain, "box_large");
   ASSERT_NE(plain_large, nullptr);
   EXPECT_TRUE(plain_large->complete) << plain_large->partial_reason;
 
   RgbdFrame printed_frame = scene.frame();
   printOnPlates(scene, printed_frame);
   const FrontEndResult printed = front_end.process(printed_frame);
-  const BrickCandidate* printed_large = large(printed);
+  const BrickCandidate* printed_large = candidateOfType(printed, "box_large");
   ASSERT_NE(printed_large, nullptr);
   EXPECT_FALSE(printed_large->complete);
   EXPECT_NE(printed_large->partial_reason.find("box_small tops touching"), std::string::npos)
@@ -381,18 +383,11 @@ TEST(FaceTiling, ColourFreeTopThatSmallerBoxesMakeUpIsPartialWhenTooDarkForTheir
   // The plain box_large top of ColourFreeTopThatSmallerBoxesMakeUpIsComplete-
   // OnlyWhenPlain, in a dim light (mean grey about 30): the seam of two
   // box_smalls in its place could be two grey levels deep, under any trace.
-  const BrickCatalogue boxes = BrickCatalogue::fromYamlFile(BRICK_POSE_SOURCE_DIR "/config/boxes.yaml");
-  test::TouchingPlatesScene scene = rowScene(1, 0.6, 0.2);
-  const cv::Vec3b dim_kraft(40, 30, 22);
-  scene.plates = {{{-0.2, -0.3}, {0.2, 0.0}, dim_kraft}, {{-0.15, 0.0}, {0.15, 0.2}, dim_kraft}};
+  test::TouchingPlatesScene scene = largeBesideSmallScene(cv::Vec3b(40, 30, 22));
   scene.background_rgb = cv::Vec3b(25, 24, 22);
   scene.line_darkening = 15.0;
-  scene.line_half_width_m = 0.002;
-  scene.groove_depth_m = 0.005;
-  const FrontEndResult result = FrontEnd(boxes, colourFreeParams()).process(scene.frame());
-  const BrickCandidate* large = nullptr;
-  for (const BrickCandidate& c : result.candidates)
-    if (c.type_name == "box_large") large = &c;
+  const FrontEndResult result = FrontEnd(boxCatalogue(), colourFreeParams()).process(scene.frame());
+  const BrickCandidate* large = candidateOfType(result, "box_large");
   ASSERT_NE(large, nullptr);
   EXPECT_FALSE(large->complete);
   EXPECT_NE(large->partial_reason.find("too dark"), std::string::npos) << large->partial_reason;
@@ -404,12 +399,11 @@ TEST(FaceTiling, ColourFreeLoneTopThatSmallerBoxesMakeUpIsPartialWhereTheirSeamS
   // make a box_large top; a dark line runs where they meet. Printed, and
   // with nothing touching them, no box_large may be complete. A box_large
   // alone, with no line across it, is.
-  const BrickCatalogue boxes = BrickCatalogue::fromYamlFile(BRICK_POSE_SOURCE_DIR "/config/boxes.yaml");
   test::TouchingPlatesScene scene = rowScene(1, 0.6, 0.2);
   const cv::Vec3b kraft(180, 140, 100);
   scene.plates = {{{-0.15, -0.2}, {0.15, 0.0}, kraft}, {{-0.15, 0.0}, {0.15, 0.2}, kraft}};
   scene.line_darkening = 30.0;
-  const FrontEnd front_end(boxes, colourFreeParams());
+  const FrontEnd front_end(boxCatalogue(), colourFreeParams());
   RgbdFrame pair_frame = scene.frame();
   printOnPlates(scene, pair_frame);
   const FrontEndResult pair = front_end.process(pair_frame);

@@ -7,27 +7,18 @@
 #include "brick_pose/common/angles.h"
 #include "brick_pose/roi/outline_axis.h"
 #include "brick_pose/segmentation/segment.h"
+#include "synthetic_plate_scene.h"
+
 
 namespace brick_pose
 {
 namespace
 {
-PinholeCamera vga()
-{
-  PinholeCamera camera;
-  camera.width_px = 640;
-  camera.height_px = 480;
-  camera.fx_px = camera.fy_px = 600.0;
-  camera.cx_px = 319.5;
-  camera.cy_px = 239.5;
-  return camera;
-}
-
 /// A frame of a plane facing the camera at 1 m (only the camera is read).
 RgbdFrame frontoParallel(PlaneFit& plane)
 {
   RgbdFrame frame;
-  frame.camera = vga();
+  frame.camera = test::PlateScene::vgaCamera();
   frame.rgb = cv::Mat::zeros(480, 640, CV_8UC3);
   frame.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(1.0f));
   plane.centroid_m = Eigen::Vector3d(0.0, 0.0, 1.0);
