@@ -902,24 +902,33 @@ void RoiFilter::doubtComposedTop(const RgbdFrame& frame, std::optional<bool> pla
   if (!type) return;
   const Composition composition = smallerTypeTiling(catalogue_.types(), *type, params_.dimensions.tolerance_m);
   if (!composition.type) return;
-  const bool traced = strongestCompositionSeam(frame, candidate.plane, candidate.corners_m, composition,
-                                               params_.dimensions.tolerance_m, params_.edges) >= kFaintSeamStrength;
-  if (!traced && !in_layer) return;
-  if (!traced && !plain)
-    plain = measureColourUniformity(frame, candidate.mask, candidate.bounding_box_px, params_.uniformity).uniform;
-  // On a plain face the seam shows, or its trace does, where there is light
-  // enough for it to show.
-  const double grey = !traced && *plain ? meanGreyLevel(frame, candidate.mask, candidate.bounding_box_px) : 0.0;
-  const bool too_dark = !traced && *plain && grey < kMinGreyForSeamToShow;
-  if (!traced && *plain && !too_dark) return;
+  const std::string printed = "on a printed face their seam need not show";
+  std::string why;
+  // In a layer, a face already known printed is doubted whatever lines it
+  // shows (the search along the meeting lines is spared); otherwise a trace
+  // there doubts it, and without one a face standing alone is one box.
+  if (in_layer && plain && !*plain)
+    why = printed;
+  else if (strongestCompositionSeam(frame, candidate.plane, candidate.corners_m, composition,
+                                    params_.dimensions.tolerance_m, params_.edges) >= kFaintSeamStrength)
+    why = "a line (or a trace of one) crosses it where they would meet";
+  else if (!in_layer)
+    return;
+  else if (!(plain ? *plain
+                    : measureColourUniformity(frame, candidate.mask, candidate.bounding_box_px, params_.uniformity)
+                          .uniform))
+    why = printed;
+  else
+  {
+    // On a plain face the seam shows, where there is light enough for it to.
+    const double grey = meanGreyLevel(frame, candidate.mask, candidate.bounding_box_px);
+    if (grey >= kMinGreyForSeamToShow) return;
+    why = describe("the face is too dark for their seam to show (mean grey", grey, "levels, need",
+                   kMinGreyForSeamToShow) +
+          ")";
+  }
   candidate.complete = false;
-  candidate.partial_reason =
-      "its top is also " + composition.type->name + " tops touching, and " +
-      (traced     ? std::string("a line (or a trace of one) crosses it where they would meet")
-       : too_dark ? describe("the face is too dark for their seam to show (mean grey", grey, "levels, need",
-                             kMinGreyForSeamToShow) +
-                        ")"
-                  : std::string("on a printed face their seam need not show"));
+  candidate.partial_reason = "its top is also " + composition.type->name + " tops touching, and " + why;
   // Its type is in doubt: one brick of this type, or several smaller ones.
   candidate.type_doubt = candidate.partial_reason;
 }
