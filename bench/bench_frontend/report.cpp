@@ -102,6 +102,28 @@ void printRow(const std::string& scene, const std::string& mode, const std::stri
               medianP95(stats.total_ms, "%.0f").c_str(), formatted("%.0f", percentile(stats.cpu_ms, 0.5)).c_str());
 }
 
+/// Where the colour-free modes spend a frame, per class and resolution: the
+/// timing targets are on the whole front end, and this says which stage to cut.
+void printStageTimes(const RunInfo& run, const RigResults& rig)
+{
+  std::printf("\nColour-free stage times, ms p50 (wall): segmentation / cloud / roi / total\n\n");
+  std::printf("| scene class | mode | resolution | segmentation | cloud | roi | total |\n|---|---|---|---|---|---|---|\n");
+  for (std::size_t c = 0; c < run.classes.size(); ++c)
+    for (std::size_t m = 0; m < run.modes.size(); ++m)
+    {
+      if (!run.classes[c].kind || !run.modes[m].mode || !run.modes[m].colour_free) continue;
+      for (std::size_t r = 0; r < run.resolutions.size(); ++r)
+      {
+        const CellStats stats = mergedCells(rig.cells, c, m, r);
+        if (stats.total_ms.empty()) continue;
+        std::printf("| %s | %s | %s | %.1f | %.1f | %.1f | %.1f |\n", run.classes[c].label.c_str(),
+                    run.modes[m].name.c_str(), run.resolutions[r].label.c_str(),
+                    percentile(stats.segmentation_ms, 0.5), percentile(stats.cloud_ms, 0.5),
+                    percentile(stats.roi_ms, 0.5), percentile(stats.total_ms, 0.5));
+      }
+    }
+}
+
 void printBreakdown(const std::string& name, const eval::ScoreTally& tally)
 {
   std::printf("- %s: %d false complete of %d complete candidates", name.c_str(), tally.false_complete,
@@ -184,6 +206,8 @@ void printTables(const RunInfo& run, const RigResults& rig, const MosdResults& m
       if (run.modes[m].colour_free)
         printRow("mOSD learn (real Kinect)", run.modes[m].name + ", no up", "640x480", mosd.modes_without_up[m]);
     }
+
+  printStageTimes(run, rig);
 
   std::printf("\nNot measured yet:");
   bool any = false;

@@ -411,7 +411,10 @@ TEST(FaceTiling, ColourFreeLoneTopThatSmallerBoxesMakeUpIsPartialWhereTheirSeamS
   for (const BrickCandidate& c : pair.candidates)
   {
     EXPECT_FALSE(c.complete && c.type_name == "box_large") << "two box_smalls published as one complete box_large";
-    if (c.type_name == "box_large") EXPECT_FALSE(c.type_doubt.empty()) << c.partial_reason;
+    if (c.type_name == "box_large")
+    {
+      EXPECT_FALSE(c.type_doubt.empty()) << c.partial_reason;
+    }
   }
 
   scene.plates = {{{-0.15, -0.2}, {0.15, 0.2}, kraft}};
@@ -451,6 +454,26 @@ TEST(CellCounts, CountsTheStateOverAnyRectangleAndNothingBeyondTheGrid)
   EXPECT_GT(counts.count(0, nx, 0, ny), 0);
   EXPECT_LT(counts.count(0, nx, 0, ny), nx * ny);
   EXPECT_EQ(CellCounts(states, nx, ny, 9).count(0, nx, 0, ny), 0) << "a state no cell holds";
+}
+
+TEST(CellCounts, AnUpdateFromARowCountsAsAFreshTable)
+{
+  const int nx = 11, ny = 9;
+  std::vector<std::uint8_t> states(static_cast<std::size_t>(nx) * ny);
+  for (std::size_t k = 0; k < states.size(); ++k) states[k] = static_cast<std::uint8_t>((k * 5 + k / 3) % 2);
+  CellCounts counts(states, nx, ny, 1);
+  // A tile taken over rows 4-6: its cells change state (as the tiler's do).
+  for (int j = 4; j < 7; ++j)
+    for (int i = 2; i < 8; ++i) states[static_cast<std::size_t>(j) * nx + i] = 2;
+  const int before = counts.count(0, nx, 0, ny);
+  counts.update(states, 4);
+  const CellCounts fresh(states, nx, ny, 1);
+  for (int i0 = 0; i0 <= nx; ++i0)
+    for (int i1 = i0; i1 <= nx; ++i1)
+      for (int j0 = 0; j0 <= ny; ++j0)
+        for (int j1 = j0; j1 <= ny; ++j1)
+          ASSERT_EQ(counts.count(i0, i1, j0, j1), fresh.count(i0, i1, j0, j1)) << i0 << " " << i1 << " " << j0 << " " << j1;
+  EXPECT_LT(counts.count(0, nx, 0, ny), before) << "the taken cells no longer count";
 }
 }  // namespace
 }  // namespace brick_pose

@@ -5,15 +5,20 @@
 namespace brick_pose
 {
 CellCounts::CellCounts(const std::vector<std::uint8_t>& states, int nx, int ny, std::uint8_t state)
-  : nx_(nx), ny_(ny), sums_(static_cast<std::size_t>(nx + 1) * (ny + 1), 0)
+  : nx_(nx), ny_(ny), state_(state), sums_(static_cast<std::size_t>(nx + 1) * (ny + 1), 0)
 {
-  for (int j = 0; j < ny; ++j)
+  update(states, 0);
+}
+
+void CellCounts::update(const std::vector<std::uint8_t>& states, int first_row)
+{
+  for (int j = std::max(0, first_row); j < ny_; ++j)
   {
     int row = 0;
-    for (int i = 0; i < nx; ++i)
+    for (int i = 0; i < nx_; ++i)
     {
-      row += states[static_cast<std::size_t>(j) * nx + i] == state ? 1 : 0;
-      sums_[static_cast<std::size_t>(j + 1) * (nx + 1) + i + 1] = at(i + 1, j) + row;
+      row += states[static_cast<std::size_t>(j) * nx_ + i] == state_ ? 1 : 0;
+      sums_[static_cast<std::size_t>(j + 1) * (nx_ + 1) + i + 1] = at(i + 1, j) + row;
     }
   }
 }

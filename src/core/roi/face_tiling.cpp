@@ -4,7 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <map>
 #include <set>
+#include <tuple>
 
 #include <opencv2/imgproc.hpp>
 
@@ -103,6 +105,62 @@ struct LineEvidence
   static constexpr int kBackgroundOuter = 12;
 };
 
+/// Each pixel's signed distance from the face's plane and its grey level,
+/// over a box around the face: the line evidence reads most pixels several
+/// times (two directions, the window across each line and its arms), and
+/// pixels outside the box are computed where read.
+class PixelSamples
+{
+public:
+  PixelSamples() = default;
+  PixelSamples(const RgbdFrame& frame, const PlaneFit& plane, const cv::Rect& box) : box_(box)
+  {
+    offset_m_.resize(static_cast<std::size_t>(box_.area()));
+    grey_sum_.resize(offset_m_.size());
+    for (int v = box_.y; v < box_.y + box_.height; ++v)
+      for (int u = box_.x; u < box_.x + box_.width; ++u)
+      {
+        const std::size_t at = index(u, v);
+        computed(frame, plane, u, v, offset_m_[at], grey_sum_[at]);
+      }
+  }
+
+  /// The pixel (u, v), which must lie in the image. The grey level is the
+  /// mean of the three channels.
+  void read(const RgbdFrame& frame, const PlaneFit& plane, int u, int v, double& offset_m, double& grey) const
+  {
+    int grey_sum = 0;
+    if (box_.contains(cv::Point(u, v)))
+    {
+      const std::size_t at = index(u, v);
+      offset_m = offset_m_[at];
+      grey_sum = grey_sum_[at];
+    }
+    else
+      computed(frame, plane, u, v, offset_m, grey_sum);
+    grey = grey_sum / 3.0;
+  }
+
+private:
+  template <typename Sum>
+  static void computed(const RgbdFrame& frame, const PlaneFit& plane, int u, int v, double& offset_m, Sum& grey_sum)
+  {
+    const cv::Vec3b& rgb = frame.rgb.ptr<cv::Vec3b>(v)[u];
+    grey_sum = static_cast<Sum>(rgb[0] + rgb[1] + rgb[2]);
+    const float z = frame.depthAt(u, v);
+    offset_m = std::isnan(z) ? std::numeric_limits<double>::quiet_NaN()
+                             : plane.signedDistance(frame.camera.backProject(u, v, z));
+  }
+  std::size_t index(int u, int v) const
+  {
+    return static_cast<std::size_t>(v - box_.y) * box_.width + static_cast<std::size_t>(u - box_.x);
+  }
+
+  cv::Rect box_;
+  std::vector<double> offset_m_;
+  std::vector<std::uint16_t> grey_sum_;
+};
+
 /// The segment rasterised on its plane.
 class PlaneGrid
 {
@@ -157,8 +215,60 @@ public:
   CellCounts counts(std::uint8_t state) const { return CellCounts(state_, nx_, ny_, state); }
 
   /// Whether a cell beyond the grid could belong to a brick cut off from
-  /// view: outside the image, or behind a nearer surface.
+  /// view: outside the image, or behind a nearer surface. Within
+  /// reserveBeyond()'s reach each cell is projected once per face: the
+  /// tilers ask about the same cells for every anchor, type and tiling.
   bool hiddenBeyondGrid(int i, int j) const
+  {
+    const int a = i + beyond_reach_, b = j + beyond_reach_;
+    const int cache_nx = nx_ + 2 * beyond_reach_;
+    if (a < 0 || b < 0 || a >= cache_nx || b >= ny_ + 2 * beyond_reach_) return projectHidden(i, j);
+    std::int8_t& known = beyond_cache_[static_cast<std::size_t>(b) * cache_nx + a];
+    if (known < 0) known = projectHidden(i, j) ? 1 : 0;
+    return known == 1;
+  }
+
+  /// Cells up to `reach_cells` beyond the grid are remembered by
+  /// hiddenBeyondGrid().
+  void reserveBeyond(int reach_cells)
+  {
+    beyond_reach_ = std::max(0, reach_cells);
+    beyond_cache_.assign(static_cast<std::size_t>(nx_ + 2 * beyond_reach_) * (ny_ + 2 * beyond_reach_), -1);
+  }
+
+  /// Dips across lines of constant s (along_s = true: lines i = 0..nx,
+  /// samples along t) or of constant t.
+  LineEvidence lineEvidence(bool constant_s, int arm_px, double on_plane_m,
+                            const std::array<double, 2>& sigma_floor) const;
+
+private:
+  /// The pixels the line evidence reads: the grid's image, `margin_px`
+  /// around it, made on first use.
+  const PixelSamples& pixelSamples(int margin_px) const
+  {
+    if (!pixel_samples_)
+    {
+      cv::Rect2d reach;
+      bool first = true;
+      for (const auto& [i, j] : {std::pair<double, double>{0.0, 0.0}, {1.0 * nx_, 0.0}, {0.0, 1.0 * ny_}, {1.0 * nx_, 1.0 * ny_}})
+      {
+        const Eigen::Vector2d p = pixel(i, j);
+        const cv::Rect2d corner(p.x(), p.y(), 0.0, 0.0);
+        reach = first ? corner : (reach | corner);
+        first = false;
+      }
+      const cv::Rect image(0, 0, frame_.width_px(), frame_.height_px());
+      const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(reach.x)) - margin_px,
+                                              static_cast<int>(std::floor(reach.y)) - margin_px),
+                                    cv::Point(static_cast<int>(std::ceil(reach.x + reach.width)) + margin_px + 1,
+                                              static_cast<int>(std::ceil(reach.y + reach.height)) + margin_px + 1)) &
+                           image;
+      pixel_samples_.emplace(frame_, plane_, box);
+    }
+    return *pixel_samples_;
+  }
+
+  bool projectHidden(int i, int j) const
   {
     const Eigen::Vector3d point_m = point(i + 0.5, j + 0.5);
     if (point_m.z() <= 0.05) return true;
@@ -169,12 +279,6 @@ public:
     return std::isnan(z) || z < point_m.z() - 0.02;
   }
 
-  /// Dips across lines of constant s (along_s = true: lines i = 0..nx,
-  /// samples along t) or of constant t.
-  LineEvidence lineEvidence(bool constant_s, int arm_px, double on_plane_m,
-                            const std::array<double, 2>& sigma_floor) const;
-
-private:
   void rasterise(const Segment& segment)
   {
     state_.assign(static_cast<std::size_t>(nx_) * ny_, kForeign);
@@ -203,6 +307,9 @@ private:
   double cell_px_ = 1.0;
   int nx_ = 1, ny_ = 1;
   std::vector<std::uint8_t> state_;
+  int beyond_reach_ = 0;
+  mutable std::vector<std::int8_t> beyond_cache_;  ///< -1 unknown, else hiddenBeyondGrid()
+  mutable std::optional<PixelSamples> pixel_samples_;
 };
 
 LineEvidence PlaneGrid::lineEvidence(bool constant_s, int arm_px, double on_plane_m,
@@ -219,14 +326,11 @@ LineEvidence PlaneGrid::lineEvidence(bool constant_s, int arm_px, double on_plan
   std::array<std::vector<float>, 2> raw;
   for (auto& channel : raw)
     channel.assign(static_cast<std::size_t>(evidence.lines) * evidence.length, std::numeric_limits<float>::quiet_NaN());
+  const PixelSamples& pixels = pixelSamples(arm_px + half_window + 2);
   auto sample = [&](const Eigen::Vector2d& p, double& offset_m, double& grey) {
     const int u = roundToInt(p.x()), v = roundToInt(p.y());
     if (u < 0 || v < 0 || u >= width || v >= height) return false;
-    const cv::Vec3b& rgb = frame_.rgb.ptr<cv::Vec3b>(v)[u];
-    grey = (static_cast<double>(rgb[0]) + rgb[1] + rgb[2]) / 3.0;
-    const float z = frame_.depthAt(u, v);
-    offset_m = std::isnan(z) ? std::numeric_limits<double>::quiet_NaN()
-                             : plane_.signedDistance(frame_.camera.backProject(u, v, z));
+    pixels.read(frame_, plane_, u, v, offset_m, grey);
     return true;
   };
   for (int line = 0; line < evidence.lines; ++line)
@@ -359,7 +463,7 @@ public:
         for (const BrickType* type : types_)
           for (const bool long_along_s : {true, false})
           {
-            Placed candidate = place(type, long_along_s, anchor);
+            Placed candidate = place(type, long_along_s, anchor, best.score);
             if (candidate.type && candidate.score > best.score) best = candidate;
           }
       if (!best.type) break;
@@ -551,9 +655,67 @@ private:
     return best_line;
   }
 
-  Placed place(const BrickType* type, bool long_along_s, const Anchor& anchor) const
+  /// The tile of `type` grown from `anchor`, or none (type null) when it
+  /// does not fit or cannot score above `score_to_beat`. The greedy loop
+  /// asks again for every anchor after each tile it takes, and most anchors
+  /// are far from that tile: a fit is kept until a tile is taken within the
+  /// cells it read (anchors open along a side, which scan whole rows, are
+  /// fitted anew).
+  Placed place(const BrickType* type, bool long_along_s, const Anchor& anchor, double score_to_beat)
   {
-    Placed result;
+    Fit fitted;
+    Fit* fit_of = &fitted;
+    if (!anchor.open_s && !anchor.open_t)
+    {
+      const FitKey key{anchor.i, anchor.j, anchor.di, anchor.dj, type, long_along_s};
+      auto known = fits_.find(key);
+      if (known == fits_.end())
+        known = fits_.emplace(key, KeptFit{fit(type, long_along_s, anchor), cellsRead(type, long_along_s, anchor)}).first;
+      fit_of = &known->second.fit;
+    }
+    else
+      fitted = fit(type, long_along_s, anchor);
+    Fit& f = *fit_of;
+    // A seam running through the tile's inside says it is two bricks. It
+    // only lowers the score, and reading it costs a line per cell of the
+    // tile: a tile that cannot win without it is not read.
+    if (!f.tile.type || f.score_without_inside <= score_to_beat) return Placed();
+    if (f.inside_seam < 0.0) f.inside_seam = strongestInsideSeam(f.tile.rect);
+    Placed result = f.tile;
+    result.score = f.score_without_inside - std::max(0.0, f.inside_seam - params_.min_seam_strength);
+    return result;
+  }
+
+  /// A tile fitted from an anchor, before its inside is read.
+  struct Fit
+  {
+    Placed tile;  ///< type null when it does not fit; score unset
+    double score_without_inside = 0.0;
+    double inside_seam = -1.0;  ///< < 0: not read yet (it depends on the rectangle alone)
+  };
+  using FitKey = std::tuple<int, int, int, int, const BrickType*, bool>;
+  struct KeptFit
+  {
+    Fit fit;
+    CellRect reads;  ///< every cell whose state fit() may have read
+  };
+
+  /// The cells fit() reads for a closed anchor: each far edge within the
+  /// tolerance of its nominal line, two cells either side of it (support()),
+  /// over the tile's extent along the other axis.
+  CellRect cellsRead(const BrickType* type, bool long_along_s, const Anchor& anchor) const
+  {
+    const int length_s = roundToInt((long_along_s ? type->length_m : type->width_m) / grid_.cellM());
+    const int length_t = roundToInt((long_along_s ? type->width_m : type->length_m) / grid_.cellM());
+    const int far_i = anchor.i + anchor.di * length_s, far_j = anchor.j + anchor.dj * length_t;
+    const int margin = 3;
+    return {std::min(anchor.i, far_i - tolerance_cells_) - margin, std::max(anchor.i, far_i + tolerance_cells_) + margin,
+            std::min(anchor.j, far_j - tolerance_cells_) - margin, std::max(anchor.j, far_j + tolerance_cells_) + margin};
+  }
+
+  Fit fit(const BrickType* type, bool long_along_s, const Anchor& anchor) const
+  {
+    Fit result;
     const int di = anchor.di, dj = anchor.dj;
     int i = anchor.i, j = anchor.j;
     const int length_s = roundToInt((long_along_s ? type->length_m : type->width_m) / grid_.cellM());
@@ -605,21 +767,19 @@ private:
         visible < params_.min_visible_fraction)
       return result;
 
-    // A seam running through the tile's inside says it is two bricks.
-    const double inside_seam = strongestInsideSeam(rect);
-    result.type = type;
-    result.rect = rect;
-    result.score = support_i.strength + support_j.strength - std::max(0.0, inside_seam - params_.min_seam_strength) +
-                   1e-3 * visible;
+    result.score_without_inside = support_i.strength + support_j.strength + 1e-3 * visible;
+    Placed& tile = result.tile;
+    tile.type = type;
+    tile.rect = rect;
     // Edge order: s = i0, t = j0, s = i1, t = j1; the anchor edges are the
     // region's boundary or earlier cuts.
     const int far_i_edge = di > 0 ? 2 : 0, far_j_edge = dj > 0 ? 3 : 1;
-    result.cut[far_i_edge] = !support_i.boundary;
-    result.seen[far_i_edge] = support_i.seam;
-    result.groove[far_i_edge] = support_i.groove;
-    result.cut[far_j_edge] = !support_j.boundary;
-    result.seen[far_j_edge] = support_j.seam;
-    result.groove[far_j_edge] = support_j.groove;
+    tile.cut[far_i_edge] = !support_i.boundary;
+    tile.seen[far_i_edge] = support_i.seam;
+    tile.groove[far_i_edge] = support_i.groove;
+    tile.cut[far_j_edge] = !support_j.boundary;
+    tile.seen[far_j_edge] = support_j.seam;
+    tile.groove[far_j_edge] = support_j.groove;
     return result;
   }
 
@@ -642,10 +802,17 @@ private:
 
   void take(const Placed& tile)
   {
+    // The fits that read a cell this tile takes are stale.
+    for (auto kept = fits_.begin(); kept != fits_.end();)
+    {
+      const CellRect& r = kept->second.reads;
+      const bool overlaps = r.i0 < tile.rect.i1 && tile.rect.i0 < r.i1 && r.j0 < tile.rect.j1 && tile.rect.j0 < r.j1;
+      kept = overlaps ? fits_.erase(kept) : std::next(kept);
+    }
     for (int b = std::max(0, tile.rect.j0); b < std::min(grid_.ny(), tile.rect.j1); ++b)
       for (int a = std::max(0, tile.rect.i0); a < std::min(grid_.nx(), tile.rect.i1); ++a)
         if (grid_.state(a, b) == kFree) grid_.setState(a, b, kTiled);
-    free_ = grid_.counts(kFree);
+    free_.update(grid_.states(), tile.rect.j0);
     for (const int line : {tile.rect.i0, tile.rect.i1})
       if (line >= 0 && line <= grid_.nx()) s_lines_.insert(line);
     for (const int line : {tile.rect.j0, tile.rect.j1})
@@ -672,6 +839,7 @@ private:
   CellCounts free_;       ///< untiled cells of the segment, rebuilt as tiles are taken
   CellCounts off_image_;  ///< cells off the image (fixed)
   std::set<int> s_lines_, t_lines_;
+  std::map<FitKey, KeptFit> fits_;  ///< see place()
 };
 
 /// The pixels of `segment` inside the image of a plane rectangle, boxed
@@ -837,6 +1005,11 @@ std::vector<FaceTiling> tileFaceEach(const RgbdFrame& frame, const Segment& segm
   PlaneGrid grid(frame, segment, measured, gridAxis(frame, segment, measured), params.cell_m, params.max_cells);
   const int segment_cells = grid.freeCount();
   if (segment_cells == 0) return tilings;
+  // A tile reaches beyond the grid by at most its length and the tolerance.
+  double longest_m = 0.0;
+  for (const auto& types : type_sets)
+    for (const BrickType* type : types) longest_m = std::max(longest_m, type->length_m);
+  grid.reserveBeyond(static_cast<int>(std::ceil((longest_m + tolerance_m) / grid.cellM())) + 2);
   const Tiler::Evidence evidence = Tiler::evidenceOf(grid, params, evidence_params);
   const std::vector<std::uint8_t> untiled = grid.states();
   for (std::size_t set = 0; set < type_sets.size(); ++set)
