@@ -723,14 +723,25 @@ private:
     int far_i = i + di * length_s;
     int far_j = j + dj * length_t;
     LineSupport support_i, support_j;
+    // The arguments of each edge's last snap: the second pass repeats a
+    // snap whose arguments did not move only in cost.
+    constexpr int kNone = std::numeric_limits<int>::min();
+    std::array<int, 3> snapped_i{{kNone, kNone, kNone}}, snapped_j = snapped_i;
+    auto snapOnce = [&](bool constant_s, int nominal, int from, int to, int inward, std::array<int, 3>& last,
+                        int& far, LineSupport& support) {
+      const std::array<int, 3> args{{nominal, from, to}};
+      if (args == last) return;
+      far = snap(constant_s, nominal, from, to, inward, support);
+      last = args;
+    };
     // Snap each far edge over the other's current extent, twice. An open
     // side starts at the first untiled cell over the tile's other extent.
     for (int pass = 0; pass < 2; ++pass)
     {
       if (anchor.open_s) i = firstFree(true, std::min(j, far_j), std::max(j, far_j), di);
-      far_i = snap(true, i + di * length_s, std::min(j, far_j), std::max(j, far_j), -di, support_i);
+      snapOnce(true, i + di * length_s, std::min(j, far_j), std::max(j, far_j), -di, snapped_i, far_i, support_i);
       if (anchor.open_t) j = firstFree(false, std::min(i, far_i), std::max(i, far_i), dj);
-      far_j = snap(false, j + dj * length_t, std::min(i, far_i), std::max(i, far_i), -dj, support_j);
+      snapOnce(false, j + dj * length_t, std::min(i, far_i), std::max(i, far_i), -dj, snapped_j, far_j, support_j);
     }
     CellRect rect{std::min(i, far_i), std::max(i, far_i), std::min(j, far_j), std::max(j, far_j)};
     if (rect.i1 - rect.i0 < 2 || rect.j1 - rect.j0 < 2) return result;
