@@ -12,13 +12,22 @@ CellCounts::CellCounts(const std::vector<std::uint8_t>& states, int nx, int ny, 
 
 void CellCounts::update(const std::vector<std::uint8_t>& states, int first_row)
 {
-  for (int j = std::max(0, first_row); j < ny_; ++j)
+  // Locals, so the stores to the sums need not reload the grid's size.
+  const int nx = nx_, ny = ny_;
+  const std::uint8_t state = state_;
+  const std::size_t stride = static_cast<std::size_t>(nx) + 1;
+  int* const sums = sums_.data();
+  const std::uint8_t* const cells = states.data();
+  for (int j = std::max(0, first_row); j < ny; ++j)
   {
+    const int* const below = sums + static_cast<std::size_t>(j) * stride;
+    int* const row_sums = sums + static_cast<std::size_t>(j + 1) * stride;
+    const std::uint8_t* const row_cells = cells + static_cast<std::size_t>(j) * nx;
     int row = 0;
-    for (int i = 0; i < nx_; ++i)
+    for (int i = 0; i < nx; ++i)
     {
-      row += states[static_cast<std::size_t>(j) * nx_ + i] == state_ ? 1 : 0;
-      sums_[static_cast<std::size_t>(j + 1) * (nx_ + 1) + i + 1] = at(i + 1, j) + row;
+      row += row_cells[i] == state ? 1 : 0;
+      row_sums[i + 1] = below[i + 1] + row;
     }
   }
 }

@@ -756,18 +756,21 @@ private:
     int hidden = off_image_.count(rect.i0, rect.i1, rect.j0, rect.j1);
     const int other = in_grid - untiled - hidden;
     int visible_other = 0;
-    auto sampleBeyond = [&](int a, int b) {
-      if ((a + b) % 3 == 0) (grid_.hiddenBeyondGrid(a, b) ? hidden : visible_other) += 3;
+    // Every third cell (those with a + b divisible by 3) stands for three.
+    auto sampleBeyond = [&](int from_a, int to_a, int b) {
+      int a = from_a;
+      while (a < to_a && (a + b) % 3 != 0) ++a;
+      for (; a < to_a; a += 3) (grid_.hiddenBeyondGrid(a, b) ? hidden : visible_other) += 3;
     };
     for (int b = rect.j0; b < rect.j1; ++b)
     {
       if (b < 0 || b >= grid_.ny())
       {
-        for (int a = rect.i0; a < rect.i1; ++a) sampleBeyond(a, b);
+        sampleBeyond(rect.i0, rect.i1, b);
         continue;
       }
-      for (int a = rect.i0; a < std::min(rect.i1, 0); ++a) sampleBeyond(a, b);
-      for (int a = std::max(rect.i0, grid_.nx()); a < rect.i1; ++a) sampleBeyond(a, b);
+      sampleBeyond(rect.i0, std::min(rect.i1, 0), b);
+      sampleBeyond(std::max(rect.i0, grid_.nx()), rect.i1, b);
     }
     const int seen = untiled + other + visible_other;
     if (seen == 0) return result;
