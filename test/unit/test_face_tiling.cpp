@@ -326,6 +326,30 @@ TEST(FaceTiling, ColourFreeTouchingBricksAreCutAtFaintSeamsInADimLight)
 
 }
 
+TEST(FaceTiling, ColourFreeTouchingBricksWithAFattenedOutlineAreCutAtTheirSeam)
+{
+  // Two greens side by side, their rims and their seam dark. A D4xx
+  // fattens the layer's depth about a centimetre over its steps, so the
+  // merged face reaches that far beyond the bricks' ends, and the line where
+  // each brick really ends reads as a seam with the fringe beyond it. A cut
+  // there, with nothing but the fringe beyond, is no cut between two bricks.
+  test::TouchingPlatesScene scene = rowScene(2, 0.6, 0.2);
+  for (auto& plate : scene.plates) plate.rgb = cv::Vec3b(200, 60, 50);
+  scene.line_darkening = 40.0;
+  scene.rim_darkening = 40.0;
+  scene.line_half_width_m = 0.002;
+  scene.fattening_m = 0.010;
+  const FrontEnd front_end(BrickCatalogue::mbzirc2020(), colourFreeParams());
+  const FrontEndResult result = front_end.process(scene.frame());
+  ASSERT_EQ(result.candidates.size(), 2u);
+  for (const BrickCandidate& c : result.candidates)
+  {
+    EXPECT_EQ(c.type_name, "green");
+    EXPECT_TRUE(c.complete) << c.partial_reason;
+  }
+  EXPECT_LT(worstCornerErrorM(result.candidates, scene), 0.015);
+}
+
 TEST(FaceTiling, ColourFreeTilingPrefersTheSizesItsSeamsDraw)
 {
   // Two rows of two reds end to end (0.6 x 0.4): reds, greens and the

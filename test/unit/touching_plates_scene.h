@@ -5,9 +5,11 @@
 // shows them: nothing at all, a shallow groove in depth, and/or a dark line
 // in colour.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -47,6 +49,13 @@ struct TouchingPlatesScene
   /// Grey-level noise added to every colour channel of the plates (one
   /// draw per pixel, as a sensor's luminance noise).
   double colour_noise = 0.0;
+  /// D4xx stereo fattens a foreground over its steps: this far (m, on the
+  /// layer's plane) beyond the plates' outer edges the depth is still the
+  /// layer's while the colour is the background's.
+  double fattening_m = 0.0;
+  /// The plates' outer rim (a rounded edge) this much darker over
+  /// line_half_width_m, as their seams are.
+  double rim_darkening = 0.0;
   unsigned seed = 3;
 
   /// Layer frame facing the camera (z toward it), turned by `yaw_rad` in the
@@ -78,6 +87,33 @@ struct TouchingPlatesScene
   {
     return {toCamera(plate.min_m.x(), plate.max_m.y()), toCamera(plate.max_m.x(), plate.max_m.y()),
             toCamera(plate.max_m.x(), plate.min_m.y()), toCamera(plate.min_m.x(), plate.min_m.y())};
+  }
+
+  /// Distance (m) from a layer point to the nearest plate (0 on one).
+  double distanceToPlates(const Eigen::Vector2d& p) const
+  {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Plate& plate : plates)
+    {
+      const double dx = std::max({plate.min_m.x() - p.x(), 0.0, p.x() - plate.max_m.x()});
+      const double dy = std::max({plate.min_m.y() - p.y(), 0.0, p.y() - plate.max_m.y()});
+      nearest = std::min(nearest, std::hypot(dx, dy));
+    }
+    return nearest;
+  }
+
+  /// Whether a point of `plate` lies within `width_m` of an edge of it that
+  /// no other plate touches (the outer rim of the layer).
+  bool onRim(const Eigen::Vector2d& p, const Plate& plate, double width_m) const
+  {
+    const double beyond_m = width_m + 0.002;
+    const std::array<std::pair<double, Eigen::Vector2d>, 4> edges{{{p.x() - plate.min_m.x(), {-1.0, 0.0}},
+                                                                    {plate.max_m.x() - p.x(), {1.0, 0.0}},
+                                                                    {p.y() - plate.min_m.y(), {0.0, -1.0}},
+                                                                    {plate.max_m.y() - p.y(), {0.0, 1.0}}}};
+    for (const auto& [distance_m, outward] : edges)
+      if (distance_m < width_m && distanceToPlates(p + (distance_m + beyond_m) * outward) > 0.0) return true;
+    return false;
   }
 
   /// Distance (m) from a layer point inside `plate` to the nearest edge it
@@ -128,10 +164,15 @@ struct TouchingPlatesScene
           if (seam_m < groove_half_width_m)
             z += groove_depth_m * (1.0 - seam_m / groove_half_width_m) / std::max(1e-6, -normal.z());
           double darkening = seam_m < line_half_width_m ? line_darkening : 0.0;
+          if (rim_darkening > 0.0 && onRim(local.head<2>(), plate, line_half_width_m))
+            darkening = std::max(darkening, rim_darkening);
           if (colour_noise > 0.0) darkening -= colour_noise * noise(generator);
           for (int c = 0; c < 3; ++c) colour[c] = cv::saturate_cast<std::uint8_t>(colour[c] - darkening);
           break;
         }
+        if (z == background_z && fattening_m > 0.0 && hit.z() < background_z &&
+            distanceToPlates(local.head<2>()) <= fattening_m)
+          z = hit.z();
         depth.at<float>(v, u) = static_cast<float>(z + depth_noise_m * noise(generator));
         rgb.at<cv::Vec3b>(v, u) = colour;
       }

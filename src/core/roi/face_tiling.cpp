@@ -471,6 +471,8 @@ public:
       placed.push_back(best);
       if (free_.count(0, grid_.nx(), 0, grid_.ny()) < 0.05 * total_free) break;
     }
+    const CellCounts tiled = grid_.counts(kTiled);
+    for (Placed& tile : placed) uncutFringes(tile, tiled);
     return placed;
   }
 
@@ -831,6 +833,64 @@ private:
       if (line >= 0 && line <= grid_.nx()) s_lines_.insert(line);
     for (const int line : {tile.rect.j0, tile.rect.j1})
       if (line >= 0 && line <= grid_.ny()) t_lines_.insert(line);
+  }
+
+  /// A cut with nothing beyond it but a strip of the segment thinner than
+  /// the tolerance, which then ends, is the segment's edge: D4xx depth
+  /// fattens a face a few pixels over each step down, and the line where
+  /// the face really ends can pass for a seam with that fringe beyond it.
+  /// No brick is that narrow, so the strip is no neighbour; the edge is left
+  /// to the tile's own edge test (a step down, or an occluder, beyond the
+  /// strip) like any side along the segment's boundary.
+  void uncutFringes(Placed& tile, const CellCounts& tiled) const
+  {
+    for (int k = 0; k < 4; ++k)
+    {
+      if (!tile.cut[k]) continue;
+      const bool constant_s = k % 2 == 0;
+      const int outward = k < 2 ? -1 : 1;
+      const int line = k == 0 ? tile.rect.i0 : k == 1 ? tile.rect.j0 : k == 2 ? tile.rect.i1 : tile.rect.j1;
+      const int from = constant_s ? tile.rect.j0 : tile.rect.i0, to = constant_s ? tile.rect.j1 : tile.rect.i1;
+      if (fringeOnly(tiled, constant_s, line, outward, from, to))
+      {
+        tile.cut[k] = false;
+        tile.seen[k] = false;
+        tile.groove[k] = false;
+      }
+    }
+  }
+
+  /// Whether the cells beyond `line` (toward `outward`) over [from, to) are
+  /// a strip of untiled segment at most tolerance_cells_ deep that ends in
+  /// cells of another surface (not the image border: the segment may go
+  /// on there), with no tile in it.
+  bool fringeOnly(const CellCounts& tiled, bool constant_s, int line, int outward, int from, int to) const
+  {
+    const int length = to - from;
+    if (length <= 0) return false;
+    auto column = [&](int depth) { return outward > 0 ? line + depth : line - 1 - depth; };
+    auto countIn = [&](const CellCounts& counts, int c) {
+      return constant_s ? counts.count(c, c + 1, from, to) : counts.count(from, to, c, c + 1);
+    };
+    for (int depth = 0; depth <= tolerance_cells_; ++depth)
+    {
+      const int c = column(depth);
+      const int limit = constant_s ? grid_.nx() : grid_.ny();
+      if (c < 0 || c >= limit) return depth > 0 && !beyondHidden(constant_s, c, from, to);
+      if (countIn(tiled, c) > 0 || countIn(off_image_, c) > 0) return false;
+      // The strip ends where (almost) nothing of the segment is left.
+      if (countIn(free_, c) * 20 <= length) return depth > 0;
+    }
+    return false;
+  }
+
+  /// Whether any of the cells of column (or row) `c` beyond the grid over
+  /// [from, to) could hold the segment out of view.
+  bool beyondHidden(bool constant_s, int c, int from, int to) const
+  {
+    for (int k = from; k < to; k += 3)
+      if (constant_s ? grid_.hiddenBeyondGrid(c, k) : grid_.hiddenBeyondGrid(k, c)) return true;
+    return false;
   }
 
   static constexpr double kBoundaryStrength = 6.0;
