@@ -161,7 +161,8 @@ private:
   std::vector<std::uint16_t> grey_sum_;
 };
 
-/// The segment rasterised on its plane.
+/// The segment rasterised on its plane. One per face and thread: its const
+/// queries fill caches (pixels read, cells beyond the grid) on first use.
 class PlaneGrid
 {
 public:
@@ -248,20 +249,26 @@ private:
   {
     if (!pixel_samples_)
     {
-      cv::Rect2d reach;
-      bool first = true;
+      // The image box of the grid's corners (a plane rectangle in front of
+      // the camera projects to a convex quadrilateral); corners behind it
+      // or beyond the image are clamped to the image.
+      const double width = frame_.width_px(), height = frame_.height_px();
+      double u_min = width, v_min = height, u_max = 0.0, v_max = 0.0;
       for (const auto& [i, j] : {std::pair<double, double>{0.0, 0.0}, {1.0 * nx_, 0.0}, {0.0, 1.0 * ny_}, {1.0 * nx_, 1.0 * ny_}})
       {
-        const Eigen::Vector2d p = pixel(i, j);
-        const cv::Rect2d corner(p.x(), p.y(), 0.0, 0.0);
-        reach = first ? corner : (reach | corner);
-        first = false;
+        const Eigen::Vector3d corner_m = point(i, j);
+        const Eigen::Vector2d p = corner_m.z() > 0.05 ? pixel(i, j) : Eigen::Vector2d(-1.0, -1.0);
+        const bool usable = corner_m.z() > 0.05 && std::isfinite(p.x()) && std::isfinite(p.y());
+        u_min = std::min(u_min, usable ? std::clamp(p.x(), 0.0, width) : 0.0);
+        v_min = std::min(v_min, usable ? std::clamp(p.y(), 0.0, height) : 0.0);
+        u_max = std::max(u_max, usable ? std::clamp(p.x(), 0.0, width) : width);
+        v_max = std::max(v_max, usable ? std::clamp(p.y(), 0.0, height) : height);
       }
       const cv::Rect image(0, 0, frame_.width_px(), frame_.height_px());
-      const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(reach.x)) - margin_px,
-                                              static_cast<int>(std::floor(reach.y)) - margin_px),
-                                    cv::Point(static_cast<int>(std::ceil(reach.x + reach.width)) + margin_px + 1,
-                                              static_cast<int>(std::ceil(reach.y + reach.height)) + margin_px + 1)) &
+      const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(u_min)) - margin_px,
+                                              static_cast<int>(std::floor(v_min)) - margin_px),
+                                    cv::Point(static_cast<int>(std::ceil(u_max)) + margin_px + 1,
+                                              static_cast<int>(std::ceil(v_max)) + margin_px + 1)) &
                            image;
       pixel_samples_.emplace(frame_, plane_, box);
     }
@@ -681,10 +688,11 @@ private:
     // A seam running through the tile's inside says it is two bricks. It
     // only lowers the score, and reading it costs a line per cell of the
     // tile: a tile that cannot win without it is not read.
-    if (!f.tile.type || f.score_without_inside <= score_to_beat) return Placed();
+    // (Summed in the order the score always was, so ties fall as before.)
+    if (!f.tile.type || f.edge_strength + f.visible_bonus <= score_to_beat) return Placed();
     if (f.inside_seam < 0.0) f.inside_seam = strongestInsideSeam(f.tile.rect);
     Placed result = f.tile;
-    result.score = f.score_without_inside - std::max(0.0, f.inside_seam - params_.min_seam_strength);
+    result.score = f.edge_strength - std::max(0.0, f.inside_seam - params_.min_seam_strength) + f.visible_bonus;
     return result;
   }
 
@@ -692,7 +700,8 @@ private:
   struct Fit
   {
     Placed tile;  ///< type null when it does not fit; score unset
-    double score_without_inside = 0.0;
+    double edge_strength = 0.0;  ///< the far edges' support
+    double visible_bonus = 0.0;  ///< a thousandth of the visible share, to break ties
     double inside_seam = -1.0;  ///< < 0: not read yet (it depends on the rectangle alone)
   };
   using FitKey = std::tuple<int, int, int, int, const BrickType*, bool>;
@@ -710,7 +719,7 @@ private:
     const int length_s = roundToInt((long_along_s ? type->length_m : type->width_m) / grid_.cellM());
     const int length_t = roundToInt((long_along_s ? type->width_m : type->length_m) / grid_.cellM());
     const int far_i = anchor.i + anchor.di * length_s, far_j = anchor.j + anchor.dj * length_t;
-    const int margin = 3;
+    const int margin = 3;  // support()'s band of two cells either side of a line, and one spare
     return {std::min(anchor.i, far_i - tolerance_cells_) - margin, std::max(anchor.i, far_i + tolerance_cells_) + margin,
             std::min(anchor.j, far_j - tolerance_cells_) - margin, std::max(anchor.j, far_j + tolerance_cells_) + margin};
   }
@@ -783,7 +792,8 @@ private:
         visible < params_.min_visible_fraction)
       return result;
 
-    result.score_without_inside = support_i.strength + support_j.strength + 1e-3 * visible;
+    result.edge_strength = support_i.strength + support_j.strength;
+    result.visible_bonus = 1e-3 * visible;
     Placed& tile = result.tile;
     tile.type = type;
     tile.rect = rect;
@@ -835,8 +845,8 @@ private:
       if (line >= 0 && line <= grid_.ny()) t_lines_.insert(line);
   }
 
-  /// A cut with nothing beyond it but a strip of the segment thinner than
-  /// the tolerance, which then ends, is the segment's edge: D4xx depth
+  /// A cut with nothing beyond it but a strip of the segment at most
+  /// kMaxFringeM deep, which then ends, is the segment's edge: D4xx depth
   /// fattens a face a few pixels over each step down, and the line where
   /// the face really ends can pass for a seam with that fringe beyond it.
   /// No brick is that narrow, so the strip is no neighbour; the edge is left
@@ -861,28 +871,37 @@ private:
   }
 
   /// Whether the cells beyond `line` (toward `outward`) over [from, to) are
-  /// a strip of untiled segment at most tolerance_cells_ deep that ends in
-  /// cells of another surface (not the image border: the segment may go
-  /// on there), with no tile in it.
+  /// a strip of untiled segment at most kMaxFringeM deep that ends in cells
+  /// of another surface (not the image border: the segment may go on
+  /// there), with no tile in it or just past its end (a tile beyond a thin
+  /// line of dropouts is a neighbour, and the cut is shared with it).
   bool fringeOnly(const CellCounts& tiled, bool constant_s, int line, int outward, int from, int to) const
   {
-    const int length = to - from;
-    if (length <= 0) return false;
+    const int length_cells = to - from;
+    if (length_cells <= 0) return false;
+    const int limit = constant_s ? grid_.nx() : grid_.ny();
+    const int max_depth_cells = std::min(tolerance_cells_, static_cast<int>(std::ceil(kMaxFringeM / grid_.cellM())));
     auto column = [&](int depth) { return outward > 0 ? line + depth : line - 1 - depth; };
     auto countIn = [&](const CellCounts& counts, int c) {
       return constant_s ? counts.count(c, c + 1, from, to) : counts.count(from, to, c, c + 1);
     };
-    for (int depth = 0; depth <= tolerance_cells_; ++depth)
+    for (int depth = 0; depth <= max_depth_cells; ++depth)
     {
       const int c = column(depth);
-      const int limit = constant_s ? grid_.nx() : grid_.ny();
       if (c < 0 || c >= limit) return depth > 0 && !beyondHidden(constant_s, c, from, to);
       if (countIn(tiled, c) > 0 || countIn(off_image_, c) > 0) return false;
       // The strip ends where (almost) nothing of the segment is left.
-      if (countIn(free_, c) * 20 <= length) return depth > 0;
+      if (countIn(free_, c) <= kFringeEndFreeShare * length_cells)
+        return depth > 0 && countIn(tiled, column(depth + 1)) == 0 && countIn(tiled, column(depth + 2)) == 0;
     }
     return false;
   }
+
+  /// Deepest strip of segment beyond a cut that is taken for fattening: a
+  /// D4xx fattens a step by a few pixels, 1-1.5 cm at 2 m in VGA.
+  static constexpr double kMaxFringeM = 0.02;
+  /// A column of the strip holding at most this share of segment cells ends it.
+  static constexpr double kFringeEndFreeShare = 0.05;
 
   /// Whether any of the cells of column (or row) `c` beyond the grid over
   /// [from, to) could hold the segment out of view.
