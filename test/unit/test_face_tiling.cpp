@@ -1,6 +1,7 @@
 // Touching bricks merged into one planar segment, cut apart by tiling the
 // segment with catalogue sizes along the seams the image shows.
 #include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -47,6 +48,20 @@ double worstCornerErrorM(const std::vector<BrickCandidate>& candidates, const te
     }
   }
   return worst;
+}
+
+/// `count` candidates, each a complete `type_name`, their corners within
+/// 1.5 cm of the scene's plates.
+void expectWholeBricks(const FrontEndResult& result, const test::TouchingPlatesScene& scene, std::size_t count,
+                       const std::string& type_name)
+{
+  ASSERT_EQ(result.candidates.size(), count);
+  for (const BrickCandidate& c : result.candidates)
+  {
+    EXPECT_EQ(c.type_name, type_name);
+    EXPECT_TRUE(c.complete) << c.partial_reason;
+  }
+  EXPECT_LT(worstCornerErrorM(result.candidates, scene), 0.015);
 }
 
 /// A front end without colour: region growing, types told by size.
@@ -281,13 +296,7 @@ TEST(FaceTiling, ColourFreeTouchingBricksAreCutAtDarkSeamsAndCompleteWhenPlain)
   const FrontEndParams params = colourFreeParams();
   const FrontEnd front_end(BrickCatalogue::mbzirc2020(), params);
   const FrontEndResult seamed = front_end.process(scene.frame());
-  ASSERT_EQ(seamed.candidates.size(), 3u);
-  for (const BrickCandidate& c : seamed.candidates)
-  {
-    EXPECT_EQ(c.type_name, "green");
-    EXPECT_TRUE(c.complete) << c.partial_reason;
-  }
-  EXPECT_LT(worstCornerErrorM(seamed.candidates, scene), 0.015);
+  ASSERT_NO_FATAL_FAILURE(expectWholeBricks(seamed, scene, 3u, "green"));
 
   // The same face printed: a line is no seam there. Cut or not, no brick
   // may claim to be whole.
@@ -316,14 +325,7 @@ TEST(FaceTiling, ColourFreeTouchingBricksAreCutAtFaintSeamsInADimLight)
   scene.colour_noise = 3.0;
   const FrontEnd front_end(BrickCatalogue::mbzirc2020(), colourFreeParams());
   const FrontEndResult faint = front_end.process(scene.frame());
-  ASSERT_EQ(faint.candidates.size(), 3u);
-  for (const BrickCandidate& c : faint.candidates)
-  {
-    EXPECT_EQ(c.type_name, "green");
-    EXPECT_TRUE(c.complete) << c.partial_reason;
-  }
-  EXPECT_LT(worstCornerErrorM(faint.candidates, scene), 0.015);
-
+  ASSERT_NO_FATAL_FAILURE(expectWholeBricks(faint, scene, 3u, "green"));
 }
 
 TEST(FaceTiling, ColourFreeTouchingBricksWithAFattenedOutlineAreCutAtTheirSeam)
@@ -341,13 +343,7 @@ TEST(FaceTiling, ColourFreeTouchingBricksWithAFattenedOutlineAreCutAtTheirSeam)
   scene.fattening_m = 0.010;
   const FrontEnd front_end(BrickCatalogue::mbzirc2020(), colourFreeParams());
   const FrontEndResult result = front_end.process(scene.frame());
-  ASSERT_EQ(result.candidates.size(), 2u);
-  for (const BrickCandidate& c : result.candidates)
-  {
-    EXPECT_EQ(c.type_name, "green");
-    EXPECT_TRUE(c.complete) << c.partial_reason;
-  }
-  EXPECT_LT(worstCornerErrorM(result.candidates, scene), 0.015);
+  ASSERT_NO_FATAL_FAILURE(expectWholeBricks(result, scene, 2u, "green"));
 }
 
 TEST(FaceTiling, ColourFreeTilingPrefersTheSizesItsSeamsDraw)

@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 #include <tuple>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
@@ -257,8 +258,9 @@ private:
       for (const auto& [i, j] : {std::pair<double, double>{0.0, 0.0}, {1.0 * nx_, 0.0}, {0.0, 1.0 * ny_}, {1.0 * nx_, 1.0 * ny_}})
       {
         const Eigen::Vector3d corner_m = point(i, j);
-        const Eigen::Vector2d p = corner_m.z() > 0.05 ? pixel(i, j) : Eigen::Vector2d(-1.0, -1.0);
-        const bool usable = corner_m.z() > 0.05 && std::isfinite(p.x()) && std::isfinite(p.y());
+        const bool in_front = corner_m.z() > 0.05;
+        const Eigen::Vector2d p = in_front ? frame_.camera.project(corner_m) : Eigen::Vector2d::Zero();
+        const bool usable = in_front && std::isfinite(p.x()) && std::isfinite(p.y());
         u_min = std::min(u_min, usable ? std::clamp(p.x(), 0.0, width) : 0.0);
         v_min = std::min(v_min, usable ? std::clamp(p.y(), 0.0, height) : 0.0);
         u_max = std::max(u_max, usable ? std::clamp(p.x(), 0.0, width) : width);
@@ -412,6 +414,8 @@ LineEvidence PlaneGrid::lineEvidence(bool constant_s, int arm_px, double on_plan
 struct CellRect
 {
   int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+  /// The line edge k lies on, in rectangle order: s = i0, t = j0, s = i1, t = j1.
+  int edgeLine(int k) const { return k == 0 ? i0 : k == 1 ? j0 : k == 2 ? i1 : j1; }
 };
 
 class Tiler
@@ -711,13 +715,19 @@ private:
     CellRect reads;  ///< every cell whose state fit() may have read
   };
 
+  /// The tile's size in cells along s and t.
+  std::pair<int, int> tileCells(const BrickType* type, bool long_along_s) const
+  {
+    return {roundToInt((long_along_s ? type->length_m : type->width_m) / grid_.cellM()),
+            roundToInt((long_along_s ? type->width_m : type->length_m) / grid_.cellM())};
+  }
+
   /// The cells fit() reads for a closed anchor: each far edge within the
   /// tolerance of its nominal line, two cells either side of it (support()),
   /// over the tile's extent along the other axis.
   CellRect cellsRead(const BrickType* type, bool long_along_s, const Anchor& anchor) const
   {
-    const int length_s = roundToInt((long_along_s ? type->length_m : type->width_m) / grid_.cellM());
-    const int length_t = roundToInt((long_along_s ? type->width_m : type->length_m) / grid_.cellM());
+    const auto [length_s, length_t] = tileCells(type, long_along_s);
     const int far_i = anchor.i + anchor.di * length_s, far_j = anchor.j + anchor.dj * length_t;
     const int margin = 3;  // support()'s band of two cells either side of a line, and one spare
     return {std::min(anchor.i, far_i - tolerance_cells_) - margin, std::max(anchor.i, far_i + tolerance_cells_) + margin,
@@ -729,8 +739,7 @@ private:
     Fit result;
     const int di = anchor.di, dj = anchor.dj;
     int i = anchor.i, j = anchor.j;
-    const int length_s = roundToInt((long_along_s ? type->length_m : type->width_m) / grid_.cellM());
-    const int length_t = roundToInt((long_along_s ? type->width_m : type->length_m) / grid_.cellM());
+    const auto [length_s, length_t] = tileCells(type, long_along_s);
     int far_i = i + di * length_s;
     int far_j = j + dj * length_t;
     LineSupport support_i, support_j;
@@ -859,7 +868,7 @@ private:
       if (!tile.cut[k]) continue;
       const bool constant_s = k % 2 == 0;
       const int outward = k < 2 ? -1 : 1;
-      const int line = k == 0 ? tile.rect.i0 : k == 1 ? tile.rect.j0 : k == 2 ? tile.rect.i1 : tile.rect.j1;
+      const int line = tile.rect.edgeLine(k);
       const int from = constant_s ? tile.rect.j0 : tile.rect.i0, to = constant_s ? tile.rect.j1 : tile.rect.i1;
       if (fringeOnly(tiled, constant_s, line, outward, from, to))
       {
@@ -988,7 +997,6 @@ void markSharedCuts(const std::vector<Tiler::Placed>& placed, FaceTiling& tiling
 {
   // Edge k of a rectangle lies on line (s = i0, t = j0, s = i1, t = j1)[k]
   // and spans the other axis.
-  auto line = [](const CellRect& r, int k) { return k == 0 ? r.i0 : k == 1 ? r.j0 : k == 2 ? r.i1 : r.j1; };
   auto overlap = [](const CellRect& a, const CellRect& b, int k) {
     return k % 2 == 0 ? std::min(a.j1, b.j1) > std::max(a.j0, b.j0) : std::min(a.i1, b.i1) > std::max(a.i0, b.i0);
   };
@@ -999,7 +1007,7 @@ void markSharedCuts(const std::vector<Tiler::Placed>& placed, FaceTiling& tiling
       if (tile.cut[k]) continue;
       const int facing = (k + 2) % 4;
       for (std::size_t b = 0; b < a; ++b)
-        if (tiling.tiles[b].cut[facing] && line(placed[b].rect, facing) == line(placed[a].rect, k) &&
+        if (tiling.tiles[b].cut[facing] && placed[b].rect.edgeLine(facing) == placed[a].rect.edgeLine(k) &&
             overlap(placed[a].rect, placed[b].rect, k))
         {
           // Seen only where every stretch of it was.
