@@ -29,13 +29,13 @@ PinholeCamera camera()
   return c;
 }
 
-/// The face: a fronto-parallel plane at kFaceDepthM.
-PlaneFit facePlane()
+/// The face: a fronto-parallel plane at kFaceDepthM, fitted with `rms_m`.
+PlaneFit facePlane(double rms_m = 0.0015)
 {
   PlaneFit plane;
   plane.centroid_m = Eigen::Vector3d(0.0, 0.0, kFaceDepthM);
   plane.normal = -Eigen::Vector3d::UnitZ();
-  plane.rms_m = 0.0015;
+  plane.rms_m = rms_m;
   plane.valid = true;
   return plane;
 }
@@ -65,10 +65,10 @@ RgbdFrame makeFrame(const std::function<double(int, int)>& depth_m, const std::f
 
 double plainGrey(int, int) { return 150.0; }
 
-EdgeKind classify(const RgbdFrame& frame, double edge_u = kEdgeU)
+EdgeKind classify(const RgbdFrame& frame, double edge_u = kEdgeU, double plane_rms_m = 0.0015)
 {
   // The edge from (edge_u, 30) to (edge_u, 210); outward is +u.
-  return classifyEdge(frame, facePlane(), Eigen::Vector2d(edge_u, 30.0), Eigen::Vector2d(edge_u, 210.0),
+  return classifyEdge(frame, facePlane(plane_rms_m), Eigen::Vector2d(edge_u, 30.0), Eigen::Vector2d(edge_u, 210.0),
                       Eigen::Vector2d(1.0, 0.0))
       .kind;
 }
@@ -100,6 +100,43 @@ TEST(EdgeEvidence, SideFaceBendingAwayIsACrease)
   const RgbdFrame frame = makeFrame(
       [](int u, int) { return u < kEdgeU ? kFaceDepthM : kFaceDepthM + 0.01 * (u - kEdgeU); }, plainGrey);
   EXPECT_EQ(classify(frame), EdgeKind::kCrease);
+}
+
+/// A far face in VGA: 4 mm of noise per pixel, a plane fitted with 6 mm rms
+/// (a row of the profile must clear 2.4 cm to count as another surface).
+/// Beyond the edge the stereo window holds the top's depth for 2 pixels,
+/// then the surface falls `slope_m_per_px` per pixel.
+RgbdFrame farFaceFalling(double slope_m_per_px, unsigned seed)
+{
+  return makeFrame(
+      [slope_m_per_px](int u, int) {
+        return u < kEdgeU + 2 ? kFaceDepthM : kFaceDepthM + slope_m_per_px * (u - kEdgeU - 2);
+      },
+      plainGrey, 0.004, seed);
+}
+
+TEST(EdgeEvidence, ASideFaceSeenAtAGrazingAngleOnAFarNoisyFaceIsARealEdge)
+{
+  // The side face of a row of bricks seen from the front at 2 m: most rows
+  // alone stay under the step, all of them lie below the plane. Before,
+  // such an edge read as the plane continuing, and a row of touching bricks
+  // running off the image was not tiled at all (touching rows, frame 100).
+  constexpr double kFaceRmsM = 0.006;
+  for (unsigned seed = 1; seed <= 6; ++seed)
+  {
+    const EdgeKind kind = classify(farFaceFalling(0.0066, seed), kEdgeU, kFaceRmsM);
+    EXPECT_TRUE(kind == EdgeKind::kCrease || kind == EdgeKind::kStepDown)
+        << "seed " << seed << ": " << toString(kind);
+  }
+  // The same face going on 6 mm lower (a touching neighbour a little
+  // lower, or a plane fitted a little off) shows no edge: half a step is
+  // the least the rows' median must fall.
+  for (unsigned seed = 1; seed <= 6; ++seed)
+  {
+    const RgbdFrame lower = makeFrame([](int u, int) { return u < kEdgeU + 2 ? kFaceDepthM : kFaceDepthM + 0.006; },
+                                      plainGrey, 0.004, seed);
+    EXPECT_FALSE(isRealEdge(classify(lower, kEdgeU, kFaceRmsM))) << "seed " << seed;
+  }
 }
 
 TEST(EdgeEvidence, NearerSurfaceBeyondTheEdgeIsAnOcclusion)

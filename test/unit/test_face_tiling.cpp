@@ -346,6 +346,34 @@ TEST(FaceTiling, ColourFreeTouchingBricksWithAFattenedOutlineAreCutAtTheirSeam)
   ASSERT_NO_FATAL_FAILURE(expectWholeBricks(result, scene, 2u, "green"));
 }
 
+TEST(FaceTiling, ADropoutBeyondAFattenedOutlineHidesNoNeighbour)
+{
+  // Two greens as above with the stereo shadow beyond their fringe: a few
+  // pixels over the next 1.5 cm have no depth. A dropout there hides no
+  // neighbour beyond the fringe (whose top would run at least a brick's
+  // width along the cut), so the fringe is still no cut. Before, one
+  // dropout kept it a cut and the bricks were refused as "cut from its
+  // neighbour shows no seam" (touching rows, frame 100 in VGA). The fringe
+  // is 1.04 cm so that it fills the face's last column of tiling cells, and
+  // its end lies beyond the cells, as in that frame (at 1 cm the strip ends
+  // within the cells and what lies beyond is not read).
+  for (const unsigned seed : {3u, 4u, 5u, 6u})
+  {
+    test::TouchingPlatesScene scene = rowScene(2, 0.6, 0.2);
+    for (auto& plate : scene.plates) plate.rgb = cv::Vec3b(200, 60, 50);
+    scene.line_darkening = 40.0;
+    scene.rim_darkening = 40.0;
+    scene.line_half_width_m = 0.002;
+    scene.fattening_m = 0.0104;
+    scene.dropout_band_m = 0.015;
+    scene.dropout_share = 0.05;
+    scene.seed = seed;
+    const FrontEnd front_end(BrickCatalogue::mbzirc2020(), colourFreeParams());
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    ASSERT_NO_FATAL_FAILURE(expectWholeBricks(front_end.process(scene.frame()), scene, 2u, "green"));
+  }
+}
+
 TEST(FaceTiling, ColourFreeTilingPrefersTheSizesItsSeamsDraw)
 {
   // Two rows of two reds end to end (0.6 x 0.4): reds, greens and the

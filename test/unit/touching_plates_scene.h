@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <utility>
 #include <vector>
@@ -56,6 +57,10 @@ struct TouchingPlatesScene
   /// The plates' outer rim (a rounded edge) this much darker over
   /// line_half_width_m, as their seams are.
   double rim_darkening = 0.0;
+  /// The stereo shadow beyond a step: over this band (m) past the fattened
+  /// fringe, this share of the background's pixels has no depth.
+  double dropout_band_m = 0.0;
+  double dropout_share = 0.0;
   unsigned seed = 3;
 
   /// Layer frame facing the camera (z toward it), turned by `yaw_rad` in the
@@ -170,10 +175,13 @@ struct TouchingPlatesScene
           for (int c = 0; c < 3; ++c) colour[c] = cv::saturate_cast<std::uint8_t>(colour[c] - darkening);
           break;
         }
-        if (z == background_z && fattening_m > 0.0 && hit.z() < background_z &&
-            distanceToPlates(local.head<2>()) <= fattening_m)
-          z = hit.z();
+        const double outside_m = z == background_z && hit.z() < background_z ? distanceToPlates(local.head<2>()) : -1.0;
+        if (outside_m >= 0.0 && fattening_m > 0.0 && outside_m <= fattening_m) z = hit.z();
         depth.at<float>(v, u) = static_cast<float>(z + depth_noise_m * noise(generator));
+        // Drawn only where the band is, so that scenes without one keep their noise.
+        if (z == background_z && outside_m >= 0.0 && outside_m <= fattening_m + dropout_band_m && dropout_band_m > 0.0 &&
+            std::uniform_real_distribution<double>(0.0, 1.0)(generator) < dropout_share)
+          depth.at<float>(v, u) = std::numeric_limits<float>::quiet_NaN();
         rgb.at<cv::Vec3b>(v, u) = colour;
       }
     FrameHeader header;

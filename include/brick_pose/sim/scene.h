@@ -50,7 +50,7 @@ struct PlacedBrick
 {
   BrickType type;
   Eigen::Isometry3d world_T_brick = Eigen::Isometry3d::Identity();
-  SurfaceMarkings markings;
+  SurfaceMarkings markings{};  // braced: aggregate initialisers may leave it out
 };
 
 struct Scene

@@ -277,6 +277,19 @@ float profileOffsetM(const Profile& profile, const ProfileLine& line, int row, i
   return static_cast<float>(line.planeOffsetM(u, v));
 }
 
+/// Whether the surface beyond a stretch lies below the face's plane as a
+/// whole although most rows alone do not clear the step: a side face seen at
+/// a grazing angle on a far, noisy face (D4xx at VGA and 2 m: plane rms
+/// ~6 mm, so one row needs ~2.4 cm) whose first pixels beyond the edge the
+/// stereo window holds at the top's depth. The median over the stretch's
+/// rows (dozens), measured from the inside band's, has a small fraction of
+/// one row's noise: half the one-row step below the face is far outside it,
+/// while a plane that goes on (a seam, print, a mask's edge) stays at zero.
+bool fallsAway(double outside_below_inside_m, double step_m, const EdgeEvidenceParams& params)
+{
+  return outside_below_inside_m < -std::max(params.min_step_m, 0.5 * step_m);
+}
+
 /// Judges one stretch of an edge from its profile.
 EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, double step_m,
                           const EdgeEvidenceParams& params)
@@ -343,7 +356,7 @@ EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, doubl
   // A quarter of nearer samples is an occluder over part of the stretch.
   else if (above * 4 >= with_depth + missing && above > 0) evidence.kind = EdgeKind::kOcclusion;
   else if (with_depth < params.min_depth_fraction * (rows - border)) evidence.kind = EdgeKind::kNoDepth;
-  else if (below >= coplanar)
+  else if (below >= coplanar || fallsAway(evidence.outside_offset_m - inside, step_m, params))
   {
     // A surface that falls away linearly from the edge itself bends (the
     // brick's own side seen obliquely); one that starts lower jumps.

@@ -206,6 +206,17 @@ public:
   Eigen::Vector2d pixel(double i, double j) const { return frame_.camera.project(point(i, j)); }
 
   bool inGrid(int i, int j) const { return i >= 0 && j >= 0 && i < nx_ && j < ny_; }
+  /// The pixel (u, v) of a cell's centre; false when it is behind the
+  /// camera or off the image.
+  bool cellPixel(int i, int j, int& u, int& v) const
+  {
+    const Eigen::Vector3d point_m = point(i + 0.5, j + 0.5);
+    if (point_m.z() <= 0.05) return false;
+    const Eigen::Vector2d p = frame_.camera.project(point_m);
+    u = roundToInt(p.x());
+    v = roundToInt(p.y());
+    return u >= 0 && v >= 0 && u < frame_.width_px() && v < frame_.height_px();
+  }
   std::uint8_t state(int i, int j) const { return state_[static_cast<std::size_t>(j) * nx_ + i]; }
   void setState(int i, int j, std::uint8_t value) { state_[static_cast<std::size_t>(j) * nx_ + i] = value; }
   bool free(int i, int j) const { return inGrid(i, j) && state(i, j) == kFree; }
@@ -279,13 +290,10 @@ private:
 
   bool projectHidden(int i, int j) const
   {
-    const Eigen::Vector3d point_m = point(i + 0.5, j + 0.5);
-    if (point_m.z() <= 0.05) return true;
-    const Eigen::Vector2d p = frame_.camera.project(point_m);
-    const int u = roundToInt(p.x()), v = roundToInt(p.y());
-    if (u < 0 || v < 0 || u >= frame_.width_px() || v >= frame_.height_px()) return true;
+    int u = 0, v = 0;
+    if (!cellPixel(i, j, u, v)) return true;
     const float z = frame_.depthAt(u, v);
-    return std::isnan(z) || z < point_m.z() - 0.02;
+    return std::isnan(z) || z < point(i + 0.5, j + 0.5).z() - 0.02;
   }
 
   void rasterise(const Segment& segment)
@@ -912,13 +920,24 @@ private:
   /// A column of the strip holding at most this share of segment cells ends it.
   static constexpr double kFringeEndFreeShare = 0.05;
 
-  /// Whether any of the cells of column (or row) `c` beyond the grid over
-  /// [from, to) could hold the segment out of view.
+  /// Whether the segment could go on out of view beyond the grid, past
+  /// column (or row) `c` over [from, to): any of its cells off the image
+  /// (the segment may run on there), or a quarter of them behind a nearer
+  /// surface or without depth. A few dropouts are the stereo shadow a step
+  /// down casts, not a hidden neighbour: a neighbour's top runs at least a
+  /// brick's width along the cut.
   bool beyondHidden(bool constant_s, int c, int from, int to) const
   {
+    int samples = 0, hidden = 0;
     for (int k = from; k < to; k += 3)
-      if (constant_s ? grid_.hiddenBeyondGrid(c, k) : grid_.hiddenBeyondGrid(k, c)) return true;
-    return false;
+    {
+      const int i = constant_s ? c : k, j = constant_s ? k : c;
+      int u = 0, v = 0;
+      if (!grid_.cellPixel(i, j, u, v)) return true;
+      ++samples;
+      hidden += grid_.hiddenBeyondGrid(i, j) ? 1 : 0;
+    }
+    return hidden > 0 && hidden * 4 >= samples;
   }
 
   static constexpr double kBoundaryStrength = 6.0;
