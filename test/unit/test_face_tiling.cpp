@@ -374,6 +374,29 @@ TEST(FaceTiling, ADropoutBeyondAFattenedOutlineHidesNoNeighbour)
   }
 }
 
+TEST(FaceTiling, TwoBricksOffsetEndToEndAreTiledThoughTheirQuadLeavesTheImage)
+{
+  // Two blues side by side, one pushed half its length along the other:
+  // the merged face is a Z whose least-area quad reaches beyond the image
+  // while the face itself keeps clear of the border. Those sides of the
+  // quad are "at the image border"; they were taken for a face cut by it,
+  // and the face was not tiled at all (touching rows, frame 113 in VGA).
+  // At 1.9 and 2.6 m the quad leaves the image (at 2.1 m it does not).
+  for (const double distance_m : {1.9, 2.6})
+  {
+    test::TouchingPlatesScene scene = rowScene(1, 1.2, 0.2);
+    scene.origin_m = Eigen::Vector3d(0.0, 0.0, distance_m);
+    const cv::Vec3b plain(60, 60, 200);
+    scene.plates = {{{-0.9, -0.2}, {0.3, 0.0}, plain}, {{-0.3, 0.0}, {0.9, 0.2}, plain}};
+    scene.line_darkening = 40.0;
+    scene.rim_darkening = 40.0;
+    scene.line_half_width_m = 0.002;
+    const FrontEnd front_end(BrickCatalogue::mbzirc2020(), colourFreeParams());
+    SCOPED_TRACE("distance " + std::to_string(distance_m) + " m");
+    ASSERT_NO_FATAL_FAILURE(expectWholeBricks(front_end.process(scene.frame()), scene, 2u, "blue"));
+  }
+}
+
 TEST(FaceTiling, ColourFreeTilingPrefersTheSizesItsSeamsDraw)
 {
   // Two rows of two reds end to end (0.6 x 0.4): reds, greens and the

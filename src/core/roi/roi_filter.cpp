@@ -179,8 +179,11 @@ double strongestCompositionSeam(const RgbdFrame& frame, const PlaneFit& plane, c
 /// opposite ones with the others at the image border (a row longer than the
 /// view: its bricks wholly in view are whole tops; a floor filling an image
 /// corner is not one). A face hidden under an occluder on
-/// two sides gives only bricks cut off by it.
-bool isRaisedLayer(const EdgeKinds& kinds)
+/// two sides gives only bricks cut off by it. A segment that keeps clear of
+/// the image border ends at real edges wherever its quad's sides are not
+/// "at the border": those sides are the quad's (rows of bricks offset end
+/// to end fill a quad reaching beyond the image), not where the face is cut.
+bool isRaisedLayer(const EdgeKinds& kinds, bool clear_of_image_border)
 {
   int real_edges = 0, border_edges = 0;
   for (const EdgeKind kind : kinds)
@@ -190,7 +193,16 @@ bool isRaisedLayer(const EdgeKinds& kinds)
   }
   const bool opposite_borders = (kinds[0] == EdgeKind::kImageBorder && kinds[2] == EdgeKind::kImageBorder) ||
                                 (kinds[1] == EdgeKind::kImageBorder && kinds[3] == EdgeKind::kImageBorder);
-  return real_edges >= 3 || (real_edges == 2 && border_edges == 2 && opposite_borders);
+  return real_edges >= 3 || (real_edges == 2 && border_edges == 2 && opposite_borders) ||
+         (clear_of_image_border && real_edges >= 2 && real_edges + border_edges == 4);
+}
+
+/// Whether a segment's pixels stay at least `margin_px` from the image border.
+bool clearOfImageBorder(const Segment& segment, const RgbdFrame& frame, int margin_px)
+{
+  const cv::Rect& box = segment.bounding_box_px;
+  return box.x >= margin_px && box.y >= margin_px && box.x + box.width <= frame.width_px() - margin_px &&
+         box.y + box.height <= frame.height_px() - margin_px;
 }
 
 /// Per tile, whether it is plain (see colour_uniformity.h), and so is the
@@ -656,7 +668,8 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   const std::vector<const BrickType*> types = only_types ? *only_types : typesFor(catalogue_, segment.type_name);
   if (types.empty()) return std::nullopt;
   const bool typed_by_size = segment.type_name.empty();
-  if (typed_by_size && !isRaisedLayer(measured.edge_kinds)) return std::nullopt;
+  if (typed_by_size && !isRaisedLayer(measured.edge_kinds, clearOfImageBorder(segment, frame, params_.edges.probe_px)))
+    return std::nullopt;
   FaceTiling tiling = typed_by_size && !seams_required
                           ? tileBySeenSeams(frame, segment, measured, types)
                           : tileFace(frame, segment, measured, types, params_.dimensions.tolerance_m, params_.tiling,
