@@ -506,7 +506,18 @@ private:
   {
     int i = 0, j = 0, di = 1, dj = 1;
     bool open_s = false, open_t = false;
+    /// Open where the image ends (not at an occluder): the brick may lie
+    /// mostly out of view. (Beyond an "occluder" a box is often whole: a
+    /// taller neighbour's wall rises from its edge.)
+    bool off_image = false;
   };
+
+  /// Whether the cell lies off the image (or behind the camera).
+  bool offImageCell(int i, int j) const
+  {
+    int u = 0, v = 0;
+    return grid_.inGrid(i, j) ? grid_.state(i, j) == kOffImage : !grid_.cellPixel(i, j, u, v);
+  }
 
   /// Whether the cell ends the region for good (another surface or tile),
   /// as opposed to hiding it (off the image, behind an occluder).
@@ -556,11 +567,13 @@ private:
             if (freeAt(at, outside) && freeAt(at + slide, outside)) continue;
             Anchor anchor;
             const int start = slide > 0 ? at : at + 1;
-            const bool open = along_t_lines ? !closedCell(at - slide, inside) : !closedCell(inside, at - slide);
+            const int before_i = along_t_lines ? at - slide : inside, before_j = along_t_lines ? inside : at - slide;
+            const bool open = !closedCell(before_i, before_j);
             if (along_t_lines)
               anchor = {start, line, slide, grow, open, false};
             else
               anchor = {line, start, grow, slide, false, open};
+            anchor.off_image = open && offImageCell(before_i, before_j);
             found.push_back(anchor);
           }
         }
@@ -648,25 +661,41 @@ private:
   }
 
   /// Moves a far edge from `nominal` to the best supported line within the
-  /// tolerance; returns the line and its support.
-  int snap(bool constant_s, int nominal, int from, int to, int inward, LineSupport& best_support) const
+  /// tolerance; returns the line and its support. A tile whose start is cut
+  /// off by the image border may be mostly out of view: where
+  /// nothing near `nominal` bounds it, its far edge is looked for on to
+  /// `open_from` (its first visible line, a cell or two in) among the lines
+  /// that clearly bound (a strong seam, or the segment's end).
+  int snap(bool constant_s, int nominal, int from, int to, int inward, LineSupport& best_support,
+           std::optional<int> open_from = std::nullopt) const
   {
     int best_line = nominal;
     double best_score = -1e9;
     best_support = LineSupport();
     const int limit = constant_s ? grid_.nx() : grid_.ny();
-    for (int line = nominal - tolerance_cells_; line <= nominal + tolerance_cells_; ++line)
-    {
+    auto consider = [&](int line, double penalty, bool bounds_only) {
       // Beyond the grid a line can only be the boundary the grid already has.
-      if (line < 0 || line > limit) continue;
+      if (line < 0 || line > limit) return;
       const LineSupport s = support(constant_s, line, from, to, inward);
-      const double score = s.strength - 0.5 * std::abs(line - nominal) / tolerance_cells_;
+      // Many lines are read there: a seam must be as strong as a confirmed
+      // cut's (see describeTiling), not one of the search's noise lines.
+      if (bounds_only && !s.boundary && !(s.seam && s.strength >= 1.5 * params_.min_seam_strength)) return;
+      const double score = s.strength - penalty;
       if (score > best_score)
       {
         best_score = score;
         best_line = line;
         best_support = s;
       }
+    };
+    for (int line = nominal - tolerance_cells_; line <= nominal + tolerance_cells_; ++line)
+      consider(line, 0.5 * std::abs(line - nominal) / tolerance_cells_, false);
+    if (open_from && !best_support.seam && !best_support.boundary)
+    {
+      // From the near end of the tolerance band back to the first visible line.
+      const int step = inward > 0 ? 1 : -1;
+      for (int line = nominal + step * (tolerance_cells_ + 1); (line - *open_from) * step <= 0; line += step)
+        consider(line, 0.5, true);
     }
     if (best_score <= 0.0)
     {
@@ -755,21 +784,24 @@ private:
     // snap whose arguments did not move only in cost.
     constexpr int kNone = std::numeric_limits<int>::min();
     std::array<int, 3> snapped_i{{kNone, kNone, kNone}}, snapped_j = snapped_i;
-    auto snapOnce = [&](bool constant_s, int nominal, int from, int to, int inward, std::array<int, 3>& last,
-                        int& far, LineSupport& support) {
+    auto snapOnce = [&](bool constant_s, int nominal, int from, int to, int inward, std::optional<int> open_from,
+                        std::array<int, 3>& last, int& far, LineSupport& support) {
       const std::array<int, 3> args{{nominal, from, to}};
       if (args == last) return;
-      far = snap(constant_s, nominal, from, to, inward, support);
+      far = snap(constant_s, nominal, from, to, inward, support, open_from);
       last = args;
     };
     // Snap each far edge over the other's current extent, twice. An open
     // side starts at the first untiled cell over the tile's other extent.
+    // (`nominal` fixes the open start, so the arguments still key the snap.)
     for (int pass = 0; pass < 2; ++pass)
     {
       if (anchor.open_s) i = firstFree(true, std::min(j, far_j), std::max(j, far_j), di);
-      snapOnce(true, i + di * length_s, std::min(j, far_j), std::max(j, far_j), -di, snapped_i, far_i, support_i);
+      snapOnce(true, i + di * length_s, std::min(j, far_j), std::max(j, far_j), -di,
+               anchor.open_s && anchor.off_image ? std::optional<int>(i + di * kMinOpenCells) : std::nullopt, snapped_i, far_i, support_i);
       if (anchor.open_t) j = firstFree(false, std::min(i, far_i), std::max(i, far_i), dj);
-      snapOnce(false, j + dj * length_t, std::min(i, far_i), std::max(i, far_i), -dj, snapped_j, far_j, support_j);
+      snapOnce(false, j + dj * length_t, std::min(i, far_i), std::max(i, far_i), -dj,
+               anchor.open_t && anchor.off_image ? std::optional<int>(j + dj * kMinOpenCells) : std::nullopt, snapped_j, far_j, support_j);
     }
     CellRect rect{std::min(i, far_i), std::max(i, far_i), std::min(j, far_j), std::max(j, far_j)};
     if (rect.i1 - rect.i0 < 2 || rect.j1 - rect.j0 < 2) return result;
@@ -941,6 +973,8 @@ private:
   }
 
   static constexpr double kBoundaryStrength = 6.0;
+  /// The least a tile shows of itself where its start is cut off (cells).
+  static constexpr int kMinOpenCells = 2;
   /// Rows next to a line that decide where a tile may start along it.
   static constexpr int kAnchorBand = 4;
 
