@@ -128,14 +128,26 @@ TEST(EdgeEvidence, ASideFaceSeenAtAGrazingAngleOnAFarNoisyFaceIsARealEdge)
     EXPECT_TRUE(kind == EdgeKind::kCrease || kind == EdgeKind::kStepDown)
         << "seed " << seed << ": " << toString(kind);
   }
-  // The same face going on 6 mm lower (a touching neighbour a little
-  // lower, or a plane fitted a little off) shows no edge: half a step is
-  // the least the rows' median must fall.
+  // The same face going on 6 or 10 mm lower (a touching neighbour a little
+  // lower, or a plane fitted a little off) shows no edge: half a step
+  // (12 mm here) is the least the rows' median must fall.
+  for (const double lower_m : {0.006, 0.010})
+    for (unsigned seed = 1; seed <= 6; ++seed)
+    {
+      const RgbdFrame lower = makeFrame(
+          [lower_m](int u, int) { return u < kEdgeU + 2 ? kFaceDepthM : kFaceDepthM + lower_m; }, plainGrey, 0.004,
+          seed);
+      EXPECT_FALSE(isRealEdge(classify(lower, kEdgeU, kFaceRmsM))) << lower_m << " m lower, seed " << seed;
+    }
+  // A band inside the edge raised 15 mm above the plane (a cover merged
+  // into the face) with the plane going on beyond it: the outside lies below
+  // the inside band, not below the face, and no edge is seen there.
   for (unsigned seed = 1; seed <= 6; ++seed)
   {
-    const RgbdFrame lower = makeFrame([](int u, int) { return u < kEdgeU + 2 ? kFaceDepthM : kFaceDepthM + 0.006; },
-                                      plainGrey, 0.004, seed);
-    EXPECT_FALSE(isRealEdge(classify(lower, kEdgeU, kFaceRmsM))) << "seed " << seed;
+    const RgbdFrame raised = makeFrame(
+        [](int u, int) { return u >= kEdgeU - 8 && u < kEdgeU ? kFaceDepthM - 0.015 : kFaceDepthM; }, plainGrey,
+        0.004, seed);
+    EXPECT_FALSE(isRealEdge(classify(raised, kEdgeU, kFaceRmsM))) << "raised inside, seed " << seed;
   }
 }
 

@@ -66,7 +66,10 @@ struct EdgeEvidenceParams
   /// rounded and mixed.
   double end_margin_fraction = 0.08;
   /// Beyond the edge, a surface more than max(min_step_m, step_noise_factor
-  /// * plane rms) from the face's plane is a different surface.
+  /// * plane rms) from the face's plane is a different surface; so is one
+  /// whose rows lie, by their median over a stretch, half that below both
+  /// the plane and the inside band (far noisy faces, whose rows alone
+  /// rarely clear the step).
   double min_step_m = 0.008;
   double step_noise_factor = 4.0;
   /// A stretch is cut by the border when at least this fraction of its

@@ -282,12 +282,18 @@ float profileOffsetM(const Profile& profile, const ProfileLine& line, int row, i
 /// a grazing angle on a far, noisy face (D4xx at VGA and 2 m: plane rms
 /// ~6 mm, so one row needs ~2.4 cm) whose first pixels beyond the edge the
 /// stereo window holds at the top's depth. The median over the stretch's
-/// rows (dozens), measured from the inside band's, has a small fraction of
-/// one row's noise: half the one-row step below the face is far outside it,
-/// while a plane that goes on (a seam, print, a mask's edge) stays at zero.
-bool fallsAway(double outside_below_inside_m, double step_m, const EdgeEvidenceParams& params)
+/// rows (at least kMinRowsToFallAway) has a small fraction of one row's
+/// noise: half the one-row step below the face is far outside it, while a
+/// plane that goes on (a seam, print, a mask's edge) stays at zero. The
+/// outside must lie that far below both the plane and the inside band: a
+/// band raised above the plane (a cover merged into the face) says nothing
+/// about where the face ends.
+constexpr int kMinRowsToFallAway = 8;
+bool fallsAway(double outside_m, double inside_m, int rows_with_depth, double step_m,
+               const EdgeEvidenceParams& params)
 {
-  return outside_below_inside_m < -std::max(params.min_step_m, 0.5 * step_m);
+  return rows_with_depth >= kMinRowsToFallAway &&
+         std::max(outside_m, outside_m - inside_m) < -std::max(params.min_step_m, 0.5 * step_m);
 }
 
 /// Judges one stretch of an edge from its profile.
@@ -356,7 +362,7 @@ EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, doubl
   // A quarter of nearer samples is an occluder over part of the stretch.
   else if (above * 4 >= with_depth + missing && above > 0) evidence.kind = EdgeKind::kOcclusion;
   else if (with_depth < params.min_depth_fraction * (rows - border)) evidence.kind = EdgeKind::kNoDepth;
-  else if (below >= coplanar || fallsAway(evidence.outside_offset_m - inside, step_m, params))
+  else if (below >= coplanar || fallsAway(evidence.outside_offset_m, inside, with_depth, step_m, params))
   {
     // A surface that falls away linearly from the edge itself bends (the
     // brick's own side seen obliquely); one that starts lower jumps.

@@ -32,6 +32,13 @@ enum CellState : std::uint8_t
 /// The quad's axes are kept within this of the outline's (see gridAxis).
 constexpr double kMaxQuadOffOutlineRad = 2.0 * kDegToRad;
 
+/// A cut is confirmed by a seam this many times the tiler's
+/// min_seam_strength: the tiler's search over the lines near each nominal
+/// cut finds noise of about 4 standard errors on a plain face (4.4 on a
+/// colour-free green, cut into two reds); a faint 1.5 mm groove scores 7.7,
+/// a dark line 24-33 (test_face_tiling).
+constexpr double kConfirmedSeamFactor = 1.5;
+
 double median(std::vector<double> values)
 {
   if (values.empty()) return 0.0;
@@ -662,10 +669,14 @@ private:
 
   /// Moves a far edge from `nominal` to the best supported line within the
   /// tolerance; returns the line and its support. A tile whose start is cut
-  /// off by the image border may be mostly out of view: where
-  /// nothing near `nominal` bounds it, its far edge is looked for on to
-  /// `open_from` (its first visible line, a cell or two in) among the lines
-  /// that clearly bound (a strong seam, or the segment's end).
+  /// off by the image border may be mostly out of view: where nothing near
+  /// `nominal` clearly bounds it, its far edge is looked for on to
+  /// `open_from` (kMinOpenCells in from its first visible line) among the
+  /// lines that clearly bound: the segment's end, or a seam as strong as a
+  /// confirmed cut's (many lines are read there, and the search's noise
+  /// lines reach min_seam_strength). The penalty there is flat: any line
+  /// between is as likely as another for a brick mostly out of view, so the
+  /// strongest wins.
   int snap(bool constant_s, int nominal, int from, int to, int inward, LineSupport& best_support,
            std::optional<int> open_from = std::nullopt) const
   {
@@ -673,13 +684,14 @@ private:
     double best_score = -1e9;
     best_support = LineSupport();
     const int limit = constant_s ? grid_.nx() : grid_.ny();
+    auto clearlyBounds = [&](const LineSupport& s) {
+      return s.boundary || (s.seam && s.strength >= kConfirmedSeamFactor * params_.min_seam_strength);
+    };
     auto consider = [&](int line, double penalty, bool bounds_only) {
       // Beyond the grid a line can only be the boundary the grid already has.
       if (line < 0 || line > limit) return;
       const LineSupport s = support(constant_s, line, from, to, inward);
-      // Many lines are read there: a seam must be as strong as a confirmed
-      // cut's (see describeTiling), not one of the search's noise lines.
-      if (bounds_only && !s.boundary && !(s.seam && s.strength >= 1.5 * params_.min_seam_strength)) return;
+      if (bounds_only && !clearlyBounds(s)) return;
       const double score = s.strength - penalty;
       if (score > best_score)
       {
@@ -690,9 +702,9 @@ private:
     };
     for (int line = nominal - tolerance_cells_; line <= nominal + tolerance_cells_; ++line)
       consider(line, 0.5 * std::abs(line - nominal) / tolerance_cells_, false);
-    if (open_from && !best_support.seam && !best_support.boundary)
+    if (open_from && !clearlyBounds(best_support))
     {
-      // From the near end of the tolerance band back to the first visible line.
+      // From the near end of the tolerance band back to open_from.
       const int step = inward > 0 ? 1 : -1;
       for (int line = nominal + step * (tolerance_cells_ + 1); (line - *open_from) * step <= 0; line += step)
         consider(line, 0.5, true);
@@ -783,17 +795,16 @@ private:
     // The arguments of each edge's last snap: the second pass repeats a
     // snap whose arguments did not move only in cost.
     constexpr int kNone = std::numeric_limits<int>::min();
-    std::array<int, 3> snapped_i{{kNone, kNone, kNone}}, snapped_j = snapped_i;
+    std::array<int, 4> snapped_i{{kNone, kNone, kNone, kNone}}, snapped_j = snapped_i;
     auto snapOnce = [&](bool constant_s, int nominal, int from, int to, int inward, std::optional<int> open_from,
-                        std::array<int, 3>& last, int& far, LineSupport& support) {
-      const std::array<int, 3> args{{nominal, from, to}};
+                        std::array<int, 4>& last, int& far, LineSupport& support) {
+      const std::array<int, 4> args{{nominal, from, to, open_from.value_or(kNone)}};
       if (args == last) return;
       far = snap(constant_s, nominal, from, to, inward, support, open_from);
       last = args;
     };
     // Snap each far edge over the other's current extent, twice. An open
     // side starts at the first untiled cell over the tile's other extent.
-    // (`nominal` fixes the open start, so the arguments still key the snap.)
     for (int pass = 0; pass < 2; ++pass)
     {
       if (anchor.open_s) i = firstFree(true, std::min(j, far_j), std::max(j, far_j), di);
@@ -1116,11 +1127,7 @@ FaceTiling describeTiling(const RgbdFrame& frame, const Segment& segment, const 
       // along the line.
       const SeamScore seam = scoreSeam(frame, measured.plane, frame.camera.project(face.corners_m[k]),
                                        frame.camera.project(face.corners_m[(k + 1) % 4]), evidence_params);
-      // 1.5x the tiler's strength: its search over the lines near each
-      // nominal cut finds noise of about 4 standard errors on a plain face
-      // (4.4 on a colour-free green, cut into two reds); a faint 1.5 mm groove
-      // scores 7.7, a dark line 24-33 (test_face_tiling).
-      const bool confirmed = seam.seen && seam.strength >= 1.5 * params.min_seam_strength;
+      const bool confirmed = seam.seen && seam.strength >= kConfirmedSeamFactor * params.min_seam_strength;
       face.seam_seen[k] = confirmed;
       groove[k] = groove[k] && confirmed;
       tiling.weakest_cut_line = std::min(tiling.weakest_cut_line, seam.line_contrast);
