@@ -374,6 +374,28 @@ TEST(FaceTiling, ADropoutBeyondAFattenedOutlineHidesNoNeighbour)
   }
 }
 
+TEST(FaceTiling, ManyDropoutsBeyondAFattenedOutlineKeepItACut)
+{
+  // The same fringe with half the pixels beyond it without depth: a
+  // neighbour could lie there out of sight, so the fringe stays a cut, the
+  // cut shows no seam, and neither green may be published whole.
+  for (const unsigned seed : {3u, 4u})
+  {
+    test::TouchingPlatesScene scene = rowScene(2, 0.6, 0.2);
+    for (auto& plate : scene.plates) plate.rgb = cv::Vec3b(200, 60, 50);
+    scene.line_darkening = 40.0;
+    scene.rim_darkening = 40.0;
+    scene.line_half_width_m = 0.002;
+    scene.fattening_m = 0.0104;
+    scene.dropout_band_m = 0.015;
+    scene.dropout_share = 0.5;
+    scene.seed = seed;
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020(), colourFreeParams()).process(scene.frame());
+    for (const BrickCandidate& c : result.candidates) EXPECT_FALSE(c.complete) << c.type_name;
+  }
+}
+
 TEST(FaceTiling, TwoBricksOffsetEndToEndAreTiledThoughTheirQuadLeavesTheImage)
 {
   // Two blues side by side, one pushed half its length along the other:
