@@ -64,6 +64,26 @@ void expectWholeBricks(const FrontEndResult& result, const test::TouchingPlatesS
   EXPECT_LT(worstCornerErrorM(result.candidates, scene), 0.015);
 }
 
+/// Plain plates whose seams and outer rims are dark lines 2 mm wide, 40
+/// grey levels darker (the rounded edges of plain bricks).
+void darkenSeamsAndRims(test::TouchingPlatesScene& scene)
+{
+  scene.line_darkening = 40.0;
+  scene.rim_darkening = 40.0;
+  scene.line_half_width_m = 0.002;
+}
+
+/// Two plain greens side by side, dark seams and rims, the layer's depth
+/// fattened `fattening_m` over its steps.
+test::TouchingPlatesScene fattenedGreens(double fattening_m)
+{
+  test::TouchingPlatesScene scene = rowScene(2, 0.6, 0.2);
+  for (auto& plate : scene.plates) plate.rgb = cv::Vec3b(200, 60, 50);
+  darkenSeamsAndRims(scene);
+  scene.fattening_m = fattening_m;
+  return scene;
+}
+
 /// A front end without colour: region growing, types told by size.
 FrontEndParams colourFreeParams()
 {
@@ -335,12 +355,7 @@ TEST(FaceTiling, ColourFreeTouchingBricksWithAFattenedOutlineAreCutAtTheirSeam)
   // merged face reaches that far beyond the bricks' ends, and the line where
   // each brick really ends reads as a seam with the fringe beyond it. A cut
   // there, with nothing but the fringe beyond, is no cut between two bricks.
-  test::TouchingPlatesScene scene = rowScene(2, 0.6, 0.2);
-  for (auto& plate : scene.plates) plate.rgb = cv::Vec3b(200, 60, 50);
-  scene.line_darkening = 40.0;
-  scene.rim_darkening = 40.0;
-  scene.line_half_width_m = 0.002;
-  scene.fattening_m = 0.010;
+  const test::TouchingPlatesScene scene = fattenedGreens(0.010);
   const FrontEnd front_end(BrickCatalogue::mbzirc2020(), colourFreeParams());
   const FrontEndResult result = front_end.process(scene.frame());
   ASSERT_NO_FATAL_FAILURE(expectWholeBricks(result, scene, 2u, "green"));
@@ -359,12 +374,7 @@ TEST(FaceTiling, ADropoutBeyondAFattenedOutlineHidesNoNeighbour)
   // within the cells and what lies beyond is not read).
   for (const unsigned seed : {3u, 4u, 5u, 6u})
   {
-    test::TouchingPlatesScene scene = rowScene(2, 0.6, 0.2);
-    for (auto& plate : scene.plates) plate.rgb = cv::Vec3b(200, 60, 50);
-    scene.line_darkening = 40.0;
-    scene.rim_darkening = 40.0;
-    scene.line_half_width_m = 0.002;
-    scene.fattening_m = 0.0104;
+    test::TouchingPlatesScene scene = fattenedGreens(0.0104);
     scene.dropout_band_m = 0.015;
     scene.dropout_share = 0.05;
     scene.seed = seed;
@@ -381,12 +391,7 @@ TEST(FaceTiling, ManyDropoutsBeyondAFattenedOutlineKeepItACut)
   // cut shows no seam, and neither green may be published whole.
   for (const unsigned seed : {3u, 4u})
   {
-    test::TouchingPlatesScene scene = rowScene(2, 0.6, 0.2);
-    for (auto& plate : scene.plates) plate.rgb = cv::Vec3b(200, 60, 50);
-    scene.line_darkening = 40.0;
-    scene.rim_darkening = 40.0;
-    scene.line_half_width_m = 0.002;
-    scene.fattening_m = 0.0104;
+    test::TouchingPlatesScene scene = fattenedGreens(0.0104);
     scene.dropout_band_m = 0.015;
     scene.dropout_share = 0.5;
     scene.seed = seed;
@@ -410,9 +415,7 @@ TEST(FaceTiling, TwoBricksOffsetEndToEndAreTiledThoughTheirQuadLeavesTheImage)
     scene.origin_m = Eigen::Vector3d(0.0, 0.0, distance_m);
     const cv::Vec3b plain(60, 60, 200);
     scene.plates = {{{-0.9, -0.2}, {0.3, 0.0}, plain}, {{-0.3, 0.0}, {0.9, 0.2}, plain}};
-    scene.line_darkening = 40.0;
-    scene.rim_darkening = 40.0;
-    scene.line_half_width_m = 0.002;
+    darkenSeamsAndRims(scene);
     const FrontEnd front_end(BrickCatalogue::mbzirc2020(), colourFreeParams());
     SCOPED_TRACE("distance " + std::to_string(distance_m) + " m");
     ASSERT_NO_FATAL_FAILURE(expectWholeBricks(front_end.process(scene.frame()), scene, 2u, "blue"));
@@ -441,9 +444,7 @@ TEST(FaceTiling, ARowRunningOffTheImageIsTiledFromTheSeamsItShows)
       scene.plates.push_back({{x0, -0.1}, {x0 + 0.3, 0.1}, plain});
       if (x0 > -0.8 && x0 + 0.3 < 0.8) whole.plates.push_back(scene.plates.back());
     }
-    scene.line_darkening = 40.0;
-    scene.rim_darkening = 40.0;
-    scene.line_half_width_m = 0.002;
+    darkenSeamsAndRims(scene);
     SCOPED_TRACE("first brick at x = " + std::to_string(first_x_m) + " m");
     const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020(), colourFreeParams()).process(scene.frame());
     // Each brick wholly in view whole; the cut-off ones are no whole brick.

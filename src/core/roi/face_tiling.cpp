@@ -310,15 +310,8 @@ private:
     for (int j = 0; j < ny_; ++j)
       for (int i = 0; i < nx_; ++i)
       {
-        const Eigen::Vector3d point_m = point(i + 0.5, j + 0.5);
-        if (point_m.z() <= 0.05)
-        {
-          setState(i, j, kOffImage);
-          continue;
-        }
-        const Eigen::Vector2d p = frame_.camera.project(point_m);
-        const int u = roundToInt(p.x()), v = roundToInt(p.y());
-        if (u < 0 || v < 0 || u >= frame_.width_px() || v >= frame_.height_px()) setState(i, j, kOffImage);
+        int u = 0, v = 0;
+        if (!cellPixel(i, j, u, v)) setState(i, j, kOffImage);
         else if (box.contains(cv::Point(u, v)) && segment.mask.at<std::uint8_t>(v - box.y, u - box.x))
           setState(i, j, kFree);
       }
@@ -805,14 +798,19 @@ private:
     };
     // Snap each far edge over the other's current extent, twice. An open
     // side starts at the first untiled cell over the tile's other extent.
+    // Where the image border cuts the tile's start off, the far edge may lie
+    // anywhere from kMinOpenCells past its first visible line (see snap()).
+    auto openFrom = [&](bool open, int start, int direction) {
+      return open && anchor.off_image ? std::optional<int>(start + direction * kMinOpenCells) : std::nullopt;
+    };
     for (int pass = 0; pass < 2; ++pass)
     {
       if (anchor.open_s) i = firstFree(true, std::min(j, far_j), std::max(j, far_j), di);
-      snapOnce(true, i + di * length_s, std::min(j, far_j), std::max(j, far_j), -di,
-               anchor.open_s && anchor.off_image ? std::optional<int>(i + di * kMinOpenCells) : std::nullopt, snapped_i, far_i, support_i);
+      snapOnce(true, i + di * length_s, std::min(j, far_j), std::max(j, far_j), -di, openFrom(anchor.open_s, i, di),
+               snapped_i, far_i, support_i);
       if (anchor.open_t) j = firstFree(false, std::min(i, far_i), std::max(i, far_i), dj);
-      snapOnce(false, j + dj * length_t, std::min(i, far_i), std::max(i, far_i), -dj,
-               anchor.open_t && anchor.off_image ? std::optional<int>(j + dj * kMinOpenCells) : std::nullopt, snapped_j, far_j, support_j);
+      snapOnce(false, j + dj * length_t, std::min(i, far_i), std::max(i, far_i), -dj, openFrom(anchor.open_t, j, dj),
+               snapped_j, far_j, support_j);
     }
     CellRect rect{std::min(i, far_i), std::max(i, far_i), std::min(j, far_j), std::max(j, far_j)};
     if (rect.i1 - rect.i0 < 2 || rect.j1 - rect.j0 < 2) return result;
@@ -975,8 +973,7 @@ private:
     for (int k = from; k < to; k += 3)
     {
       const int i = constant_s ? c : k, j = constant_s ? k : c;
-      int u = 0, v = 0;
-      if (!grid_.cellPixel(i, j, u, v)) return true;
+      if (offImageCell(i, j)) return true;
       ++samples;
       hidden += grid_.hiddenBeyondGrid(i, j) ? 1 : 0;
     }
