@@ -173,6 +173,9 @@ private:
                                         const FrameContext& context, CloudProcessingTimings* cloud_timings) const;
   /// Colour-free: whether the face is large enough for two of the smallest type.
   bool mayHoldTwoBricks(const BrickCandidate& candidate) const;
+  /// Whether most of the surface around the segment's outline lies below
+  /// its plane (see raised_layer.h).
+  bool standsUpFromItsSurroundings(const RgbdFrame& frame, const Segment& segment, const PlaneFit& plane) const;
   /// The candidates and rejections of tiling a measured segment; empty
   /// when no tiling of two or more bricks was found (or, with
   /// `seams_required`, when any cut lacks a seen seam).
