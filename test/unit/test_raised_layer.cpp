@@ -32,13 +32,6 @@ test::TouchingPlatesScene lOfPlates()
   return scene;
 }
 
-sim::SensorModel lowLightD4xx()
-{
-  sim::SensorModel sensor = sim::SensorModel::d4xx();
-  sensor.lighting = sim::Lighting::kLowLight;
-  return sensor;
-}
-
 /// The pixels whose depth lies nearer (`nearer`) or farther than `split_z_m`.
 Segment segmentByDepth(const RgbdFrame& frame, double split_z_m, bool nearer)
 {
@@ -102,21 +95,20 @@ TEST(RaisedLayer, NothingToReadIsNoLayer)
   EXPECT_FALSE(measureOutlineSurroundings(frame, layer, plane, 0.01, 12, 4).fallsAway()) << "an empty ring";
 }
 
-// bench_frontend's pallet-layer frame 145 (low light, colour-free, VGA): a
-// layer of boxes in no rectangle (its segment fills less of its least-area
-// quad than a brick's face must), beside boxes standing taller. The quad's
-// sides run over the pallet and those boxes, not along the layer's outline,
-// and did not read as three real edges, so the layer was never tiled: 2 of
-// its 8 whole tops were found (as faces of their own), 4 now. Its outline
-// stands up from its surroundings.
+// bench_frontend's pallet-layer frame 149 (normal light, colour-free, VGA):
+// seven boxes touching in a U, the pallet seen in its notch. The sides of
+// the U's least-area quad run across the notch and past the layer's ends,
+// not along its outline, and did not read as three real edges, so the
+// layer was never tiled: 0 of its 7 whole tops were found. Its outline
+// stands up from the pallet all round.
 TEST(RaisedLayer, ALayerOfBoxesInNoRectangleIsTiledIntoWholeBoxes)
 {
   const BrickCatalogue boxes = BrickCatalogue::fromYamlFile(BRICK_POSE_SOURCE_DIR "/config/boxes.yaml");
-  const std::uint64_t seed = 1000003ULL + 5000000ULL + 20;
+  const std::uint64_t seed = 1000003ULL + 5000000ULL + 24;
   const sim::Scene scene =
       sim::SceneGenerator(boxes, sim::SceneParams::defaultsFor(sim::SceneKind::kPalletLayer)).generate(seed);
   const sim::SyntheticFrame synthetic =
-      sim::SyntheticRig(sim::d415ColourMode("640x480"), lowLightD4xx()).render(scene, seed);
+      sim::SyntheticRig(sim::d415ColourMode("640x480"), sim::SensorModel::d4xx()).render(scene, seed);
   FrameHeader header;
   header.stamp_ns = 1;
   const RgbdFrame frame = makeRgbdFrame(synthetic.rgb, synthetic.depth_mm, synthetic.camera, header);
@@ -134,6 +126,6 @@ TEST(RaisedLayer, ALayerOfBoxesInNoRectangleIsTiledIntoWholeBoxes)
   }
   for (const eval::CandidateMatch& candidate : match.candidates) EXPECT_FALSE(candidate.false_complete);
   ASSERT_GE(whole, 6) << "the frame's layout";
-  EXPECT_GE(found, 3) << found << " of " << whole << " whole tops found";
+  EXPECT_GE(2 * found, whole) << found << " of " << whole << " whole tops found";
 }
 }  // namespace brick_pose

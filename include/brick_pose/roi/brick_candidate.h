@@ -21,6 +21,9 @@ namespace brick_pose
 struct BrickCandidate
 {
   std::string type_name;
+  /// The type came from the segment's plate colour (hsv). False for a
+  /// colour-free face, typed by its size or by the tiling that cut it out.
+  bool typed_by_colour = false;
 
   /// Segment points after cloud processing that lie on the fitted plane
   /// (camera frame, metres).

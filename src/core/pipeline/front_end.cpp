@@ -312,8 +312,14 @@ void FrontEnd::dropSmallPieces(FrontEndResult& result) const
 void FrontEnd::mergeFacePieces(const RgbdFrame& frame, const FrameContext& context, FrontEndResult& result) const
 {
   const double min_cos = std::cos(params_.merge_max_angle_deg * kDegToRad);
+  // Pieces of one plate colour only: the joined segment is filtered as that
+  // colour's, where a line in the colour image is the plate's edge. Two
+  // colour-free pieces (tiles of a printed box top cut where print draws
+  // lines) would be judged so too, and were found complete on part of a
+  // real box's top.
   auto samePlane = [&](const BrickCandidate& a, const BrickCandidate& b) {
-    return a.type_name == b.type_name && !a.complete && !b.complete && a.normal.dot(b.normal) >= min_cos &&
+    return a.typed_by_colour && b.typed_by_colour && a.type_name == b.type_name && !a.complete && !b.complete &&
+           a.normal.dot(b.normal) >= min_cos &&
            std::abs(a.plane.signedDistance(b.centroid_m)) <= params_.merge_max_offset_m &&
            std::abs(b.plane.signedDistance(a.centroid_m)) <= params_.merge_max_offset_m;
   };

@@ -631,10 +631,8 @@ bool RoiFilter::standsUpFromItsSurroundings(const RgbdFrame& frame, const Segmen
   // beside it, not along the layer's outline: what its sides show says
   // little there. The outline itself does: around a layer the surface
   // falls away; around the floor or a table top, objects stand on it.
-  // (Asked only of segments that fill too little of their quad: a face
-  // that fills it has its sides on its outline, and an occluder over one of
-  // them may hide part of it. On a real mOSD scene a box top partly hidden
-  // so, let through, gave a tile marked complete on 0.65 of the top.)
+  // What an occluder over part of the outline hides, the tiles show: a
+  // tile at it is cut off there, and its size does not tell its type.
   const double step_m = std::max(params_.edges.min_step_m, params_.edges.step_noise_factor * plane.rms_m);
   const int inner_px = std::max(1, params_.edges.probe_px / 2);
   return measureOutlineSurroundings(frame, segment, plane, step_m, inner_px, inner_px + params_.edges.probe_px)
@@ -657,7 +655,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   if (types.empty()) return std::nullopt;
   const bool typed_by_size = segment.type_name.empty();
   if (typed_by_size && !isRaisedLayer(measured.edge_kinds, clearOfImageBorder(segment, frame, params_.edges.probe_px)) &&
-      !(measured.fill_ratio < params_.min_fill_ratio && standsUpFromItsSurroundings(frame, segment, measured.plane)))
+      !standsUpFromItsSurroundings(frame, segment, measured.plane))
     return std::nullopt;
   FaceTiling tiling = typed_by_size && !seams_required
                           ? tileBySeenSeams(frame, segment, measured, types)
@@ -709,6 +707,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
       }
     reason = measure(frame, part, context, &tile_timings[k], candidate);
     if (!reason) reason = assignType(frame, context, part, candidate);
+    candidate.typed_by_colour = !typed_by_size;  // the tiler's type is a size
     // Without colour, a brick cut off by the border or an occluder could be
     // any longer type: its size does not tell.
     if (!reason && typed_by_size && anyTruncated(candidate))
@@ -836,6 +835,7 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
     if (auto reason = checkTopFaceDimensions(candidate.length_m, candidate.width_m, thickness_m, *type, tolerance))
       return segment.type_name + ": " + *reason;
     candidate.type_name = type->name;
+    candidate.typed_by_colour = true;
     return std::nullopt;
   }
 
