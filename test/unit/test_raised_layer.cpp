@@ -54,6 +54,12 @@ PlaneFit planeThrough(const Eigen::Vector3d& origin_m, Eigen::Vector3d normal)
   plane.valid = true;
   return plane;
 }
+/// The ring 4-12 px out, with a 1 cm step (what RoiFilter reads at VGA).
+OutlineSurroundings ringAround(const RgbdFrame& frame, const Segment& segment, const PlaneFit& plane,
+                               int inner_px = 4, int outer_px = 12)
+{
+  return measureOutlineSurroundings(frame, segment, plane, 0.01, inner_px, outer_px);
+}
 }  // namespace
 
 TEST(RaisedLayer, AroundALayerOfPlatesTheSurfaceFallsAway)
@@ -62,8 +68,7 @@ TEST(RaisedLayer, AroundALayerOfPlatesTheSurfaceFallsAway)
   const RgbdFrame frame = scene.frame();
   const Segment layer = segmentByDepth(frame, scene.origin_m.z() + 0.1, true);
   ASSERT_GT(layer.area_px, 1000);
-  const OutlineSurroundings around =
-      measureOutlineSurroundings(frame, layer, planeThrough(scene.origin_m, scene.rotation.col(2)), 0.01, 4, 12);
+  const OutlineSurroundings around = ringAround(frame, layer, planeThrough(scene.origin_m, scene.rotation.col(2)));
   EXPECT_GT(around.below, 500);
   EXPECT_EQ(around.above, 0);
   EXPECT_TRUE(around.fallsAway());
@@ -78,7 +83,7 @@ TEST(RaisedLayer, AroundTheFloorUnderALayerObjectsStandOnIt)
   ASSERT_GT(floor.area_px, 1000);
   const PlaneFit floor_plane =
       planeThrough(Eigen::Vector3d(0.0, 0.0, scene.origin_m.z() + scene.background_offset_m), Eigen::Vector3d::UnitZ());
-  const OutlineSurroundings around = measureOutlineSurroundings(frame, floor, floor_plane, 0.01, 4, 12);
+  const OutlineSurroundings around = ringAround(frame, floor, floor_plane);
   EXPECT_GT(around.above, 500);
   EXPECT_EQ(around.below, 0);
   EXPECT_FALSE(around.fallsAway());
@@ -89,10 +94,10 @@ TEST(RaisedLayer, NothingToReadIsNoLayer)
   const test::TouchingPlatesScene scene = lOfPlates();
   const RgbdFrame frame = scene.frame();
   const PlaneFit plane = planeThrough(scene.origin_m, scene.rotation.col(2));
-  EXPECT_FALSE(measureOutlineSurroundings(frame, Segment(), plane, 0.01, 4, 12).fallsAway());
+  EXPECT_FALSE(ringAround(frame, Segment(), plane).fallsAway());
   const Segment layer = segmentByDepth(frame, scene.origin_m.z() + 0.1, true);
-  EXPECT_FALSE(measureOutlineSurroundings(frame, layer, PlaneFit(), 0.01, 4, 12).fallsAway()) << "no plane";
-  EXPECT_FALSE(measureOutlineSurroundings(frame, layer, plane, 0.01, 12, 4).fallsAway()) << "an empty ring";
+  EXPECT_FALSE(ringAround(frame, layer, PlaneFit()).fallsAway()) << "no plane";
+  EXPECT_FALSE(ringAround(frame, layer, plane, 12, 4).fallsAway()) << "an empty ring";
 }
 
 // bench_frontend's pallet-layer frame 149 (normal light, colour-free, VGA):

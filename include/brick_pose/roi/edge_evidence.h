@@ -13,6 +13,7 @@
 // a seam a millimetre or two deep under several millimetres of per-pixel
 // noise still shows. An edge is only as good as its worst stretch.
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -72,6 +73,8 @@ struct EdgeEvidenceParams
   /// rarely clear the step).
   double min_step_m = 0.008;
   double step_noise_factor = 4.0;
+  /// That step (m) for a face whose plane fits its points to `plane_rms_m`.
+  double stepM(double plane_rms_m) const { return std::max(min_step_m, step_noise_factor * plane_rms_m); }
   /// A stretch is cut by the border when at least this fraction of its
   /// samples has the outside band (partly) outside the image.
   double max_border_fraction = 0.3;

@@ -460,7 +460,7 @@ double endMargin(double length_px, const EdgeEvidenceParams& params)
 EdgeEvidence judgeSpan(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& from,
                        const Eigen::Vector2d& to, const Eigen::Vector2d& outward, const EdgeEvidenceParams& params)
 {
-  const double step_m = std::max(params.min_step_m, params.step_noise_factor * plane.rms_m);
+  const double step_m = params.stepM(plane.rms_m);
   const ProfileLine line{frame, plane, from, to, outward, profileRows(from, to, params.sample_spacing_px)};
   const Profile profile = sampleProfile(line, -params.probe_px, 2 * params.probe_px, params.probe_px);
   return judgeStretch(profile, line, step_m, params);

@@ -989,7 +989,7 @@ private:
   /// Depth samples within this of the plane are on it.
   static double onPlaneM(const PlaneGrid& grid, const EdgeEvidenceParams& params)
   {
-    return std::max(params.min_step_m, params.step_noise_factor * grid.planeRmsM());
+    return params.stepM(grid.planeRmsM());
   }
 
   PlaneGrid& grid_;

@@ -1,7 +1,5 @@
 #include "brick_pose/roi/raised_layer.h"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
 
 #include <opencv2/imgproc.hpp>

@@ -633,9 +633,9 @@ bool RoiFilter::standsUpFromItsSurroundings(const RgbdFrame& frame, const Segmen
   // falls away; around the floor or a table top, objects stand on it.
   // What an occluder over part of the outline hides, the tiles show: a
   // tile at it is cut off there, and its size does not tell its type.
-  const double step_m = std::max(params_.edges.min_step_m, params_.edges.step_noise_factor * plane.rms_m);
   const int inner_px = std::max(1, params_.edges.probe_px / 2);
-  return measureOutlineSurroundings(frame, segment, plane, step_m, inner_px, inner_px + params_.edges.probe_px)
+  const int outer_px = inner_px + params_.edges.probe_px;
+  return measureOutlineSurroundings(frame, segment, plane, params_.edges.stepM(plane.rms_m), inner_px, outer_px)
       .fallsAway();
 }
 
