@@ -7,39 +7,17 @@
 #include <optional>
 #include <sstream>
 
-#include "brick_pose/common/angles.h"
 #include "brick_pose/common/elapsed.h"
 #include "brick_pose/common/enum_names.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/frame/organized_cloud.h"
+#include "brick_pose/pipeline/face_pieces.h"
 #include "brick_pose/common/parallel_for.h"
 
 namespace brick_pose
 {
 namespace
 {
-
-/// One segment made of the footprints of two candidates.
-Segment joinSegments(const BrickCandidate& a, const BrickCandidate& b)
-{
-  Segment joined;
-  joined.type_name = a.type_name;
-  joined.bounding_box_px = a.bounding_box_px | b.bounding_box_px;
-  joined.mask = cv::Mat::zeros(joined.bounding_box_px.size(), CV_8UC1);
-  for (const BrickCandidate* piece : {&a, &b})
-  {
-    cv::Mat target = joined.mask(piece->bounding_box_px - joined.bounding_box_px.tl());
-    cv::bitwise_or(target, piece->mask, target);
-  }
-  joined.area_px = cv::countNonZero(joined.mask);
-  // Segments list their pixels in raster order: a linear merge keeps that.
-  std::vector<int> first = a.pixel_indices, second = b.pixel_indices;
-  if (!std::is_sorted(first.begin(), first.end())) std::sort(first.begin(), first.end());
-  if (!std::is_sorted(second.begin(), second.end())) std::sort(second.begin(), second.end());
-  joined.pixel_indices.reserve(first.size() + second.size());
-  std::set_union(first.begin(), first.end(), second.begin(), second.end(), std::back_inserter(joined.pixel_indices));
-  return joined;
-}
 
 /// Pieces of an occluded plate may each be shorter than the visible
 /// fraction the front end accepts, and only their union long enough: the ROI
@@ -311,18 +289,6 @@ void FrontEnd::dropSmallPieces(FrontEndResult& result) const
 
 void FrontEnd::mergeFacePieces(const RgbdFrame& frame, const FrameContext& context, FrontEndResult& result) const
 {
-  const double min_cos = std::cos(params_.merge_max_angle_deg * kDegToRad);
-  // Pieces of one plate colour only: the joined segment is filtered as that
-  // colour's, where a line in the colour image is the plate's edge. Two
-  // colour-free pieces (tiles of a printed box top cut where print draws
-  // lines) would be judged so too, and were found complete on part of a
-  // real box's top.
-  auto samePlane = [&](const BrickCandidate& a, const BrickCandidate& b) {
-    return a.typed_by_colour && b.typed_by_colour && a.type_name == b.type_name && !a.complete && !b.complete &&
-           a.normal.dot(b.normal) >= min_cos &&
-           std::abs(a.plane.signedDistance(b.centroid_m)) <= params_.merge_max_offset_m &&
-           std::abs(b.plane.signedDistance(a.centroid_m)) <= params_.merge_max_offset_m;
-  };
   // Cheap test before the full ROI filtration of the joined segment: all
   // eight corners must fit in one plate, measured along and across the
   // first piece's long axis.
@@ -352,7 +318,10 @@ void FrontEnd::mergeFacePieces(const RgbdFrame& frame, const FrameContext& conte
     for (std::size_t i = 0; i < candidates.size() && !merged; ++i)
       for (std::size_t j = i + 1; j < candidates.size() && !merged; ++j)
       {
-        if (!samePlane(candidates[i], candidates[j]) || !fitsOnePlate(candidates[i], candidates[j])) continue;
+        if (!mayBePiecesOfOneFace(candidates[i], candidates[j], params_.merge_max_angle_deg,
+                                  params_.merge_max_offset_m) ||
+            !fitsOnePlate(candidates[i], candidates[j]))
+          continue;
         RoiResult joined =
             roi_filter_.filter(frame, joinSegments(candidates[i], candidates[j]), context, &result.timings.cloud);
         auto* candidate = std::get_if<BrickCandidate>(&joined);
