@@ -14,27 +14,34 @@ constexpr double kMeasuredMinVisibleFraction = 0.95;
 
 void append(std::vector<double>& to, const std::vector<double>& from) { to.insert(to.end(), from.begin(), from.end()); }
 
-/// The rejection whose box holds most of a missed top, as the earlier
-/// benchmark named misses (the reason up to its first number).
+/// The rejection that names a missed top (its reason up to its first
+/// number, as the earlier benchmark named misses): of those whose box holds
+/// a third of the top, the one whose box is most of that top (the tile cut
+/// from a split segment, not the whole segment or a neighbour's part).
 std::string missReason(const FrontEndResult& result, const eval::SceneTruth& truth, int face, bool whole,
                        bool verbose, const std::string& frame_name)
 {
   const eval::FaceTruth& top = truth.faces[static_cast<std::size_t>(face)];
+  const Rejection* named = nullptr;
+  double named_share = 0.0;
   for (const Rejection& rejection : result.rejections)
   {
-    int inside = 0;
+    int inside = 0, samples = 0;
     for (int v = rejection.bounding_box_px.y; v < rejection.bounding_box_px.br().y; v += 2)
-      for (int u = rejection.bounding_box_px.x; u < rejection.bounding_box_px.br().x; u += 2)
+      for (int u = rejection.bounding_box_px.x; u < rejection.bounding_box_px.br().x; u += 2, ++samples)
         if (truth.face_index.at<int>(v, u) == face) ++inside;
-    if (inside * 4 > top.visible_px / 3)
+    const double share = samples > 0 ? static_cast<double>(inside) / samples : 0.0;
+    if (inside * 4 > top.visible_px / 3 && share > named_share)
     {
-      if (verbose)
-        std::fprintf(stderr, "%s: miss %s%s vis %.2f: %s\n", frame_name.c_str(), whole ? "whole " : "",
-                     top.type.c_str(), top.visible_fraction, rejection.reason.c_str());
-      return rejection.reason.substr(0, rejection.reason.find_first_of("0123456789"));
+      named = &rejection;
+      named_share = share;
     }
   }
-  return "no segment";
+  if (!named) return "no segment";
+  if (verbose)
+    std::fprintf(stderr, "%s: miss %s%s vis %.2f: %s\n", frame_name.c_str(), whole ? "whole " : "", top.type.c_str(),
+                 top.visible_fraction, named->reason.c_str());
+  return named->reason.substr(0, named->reason.find_first_of("0123456789"));
 }
 
 /// Why a candidate is not one of the earlier benchmark's true positives

@@ -401,6 +401,31 @@ TEST(FaceTiling, ManyDropoutsBeyondAFattenedOutlineKeepItACut)
   }
 }
 
+TEST(FaceTiling, ARejectedTileIsReportedOverItsOwnFootprint)
+{
+  // The two greens above, refused one by one: each tile's reason is about
+  // that tile, so it is reported over the tile's box. Before, every tile's
+  // reason carried the whole merged segment's box, and the ROI nodelet's
+  // log and bench_frontend's miss lines read each as the whole layer's.
+  test::TouchingPlatesScene scene = fattenedGreens(0.0104);
+  scene.dropout_band_m = 0.015;
+  scene.dropout_share = 0.5;
+  scene.seed = 3;
+  const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020(), colourFreeParams()).process(scene.frame());
+  // The two greens' parts: refused tiles and tiles kept (partial).
+  std::vector<cv::Rect> refused, parts;
+  for (const Rejection& rejection : result.rejections)
+    if (rejection.reason.rfind("part of a split segment: cut", 0) == 0) refused.push_back(rejection.bounding_box_px);
+  parts = refused;
+  for (const BrickCandidate& candidate : result.candidates) parts.push_back(candidate.bounding_box_px);
+  ASSERT_GE(refused.size(), 1u) << "a green refused for its unseen cut";
+  ASSERT_EQ(parts.size(), 2u) << "the pair tiled into its two greens";
+  // The greens lie askew: their boxes overlap, but neither is the pair's.
+  const cv::Rect pair = parts[0] | parts[1];
+  for (const cv::Rect& box : parts)
+    EXPECT_LT(box.area(), 0.8 * pair.area()) << "each part is reported over its own green, not over the pair";
+}
+
 TEST(FaceTiling, TwoBricksOffsetEndToEndAreTiledThoughTheirQuadLeavesTheImage)
 {
   // Two blues side by side, one pushed half its length along the other:

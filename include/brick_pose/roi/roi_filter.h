@@ -84,11 +84,21 @@ Eigen::Vector3d faceCentre(const std::array<Eigen::Vector3d, 4>& corners_m);
 /// Either a candidate or the reason the segment was dropped.
 using RoiResult = std::variant<BrickCandidate, std::string>;
 
+/// Why a segment, or one part of it, was dropped.
+struct RoiRejection
+{
+  std::string reason;
+  /// The part's footprint (a tile, a side-by-side cut); empty when the
+  /// reason is about the whole segment.
+  cv::Rect part_box_px;
+  int part_area_px = 0;
+};
+
 /// Everything one segment turned into (several candidates when it was split).
 struct RoiOutcome
 {
   std::vector<BrickCandidate> candidates;
-  std::vector<std::string> rejections;
+  std::vector<RoiRejection> rejections;
 };
 
 /// What the front end decided about a whole frame before filtering its

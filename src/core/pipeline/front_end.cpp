@@ -210,10 +210,15 @@ void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>
 void FrontEnd::appendOutcome(const Segment& segment, RoiOutcome outcome, FrontEndResult& result)
 {
   std::move(outcome.candidates.begin(), outcome.candidates.end(), std::back_inserter(result.candidates));
-  for (std::string& reason : outcome.rejections)
+  for (RoiRejection& rejection : outcome.rejections)
   {
-    const std::string category = rejectionCategory(reason);
-    result.rejections.push_back({segment.type_name, segment.bounding_box_px, segment.area_px, std::move(reason), category});
+    // A part's reason is about that part: reported over its own footprint,
+    // not over the whole layer it was cut from.
+    const bool of_part = !rejection.part_box_px.empty();
+    const std::string category = rejectionCategory(rejection.reason);
+    result.rejections.push_back({segment.type_name, of_part ? rejection.part_box_px : segment.bounding_box_px,
+                                 of_part ? rejection.part_area_px : segment.area_px, std::move(rejection.reason),
+                                 category});
   }
 }
 

@@ -511,7 +511,7 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
     parts = splitAtDepthSteps(frame, segment, params_.max_depth_step_m, params_.min_part_area_px);
   if (parts.empty())
   {
-    outcome.rejections.push_back(*reason);
+    outcome.rejections.push_back({*reason, {}, 0});
     return outcome;
   }
   for (const Segment& part : parts)
@@ -533,7 +533,7 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
         std::move(split->rejections.begin(), split->rejections.end(), std::back_inserter(outcome.rejections));
         continue;
       }
-    outcome.rejections.push_back("part of a split segment: " + *part_reason);
+    outcome.rejections.push_back({"part of a split segment: " + *part_reason, part.bounding_box_px, part.area_px});
   }
   return outcome;
 }
@@ -559,7 +559,7 @@ std::optional<RoiOutcome> RoiFilter::splitMerged(const RgbdFrame& frame, const S
     if (!reason) reason = assignType(frame, context, part, candidate);
     if (reason)
     {
-      outcome.rejections.push_back("part of a split segment: " + *reason);
+      outcome.rejections.push_back({"part of a split segment: " + *reason, part.bounding_box_px, part.area_px});
       continue;
     }
     judgeCompleteness(frame, context, true, candidate);
@@ -725,13 +725,17 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   {
     if (cloud_timings) *cloud_timings += tile_timings[k];
     if (reasons[k])
-      outcome.rejections.push_back("part of a split segment: " + *reasons[k]);
+    {
+      const Segment& part = tiling.tiles[k].segment;
+      outcome.rejections.push_back({"part of a split segment: " + *reasons[k], part.bounding_box_px, part.area_px});
+    }
     else
       outcome.candidates.push_back(std::move(candidates[k]));
   }
   if (tiling.untiled_fraction > 0.2)
-    outcome.rejections.push_back(describe("part of a split segment: a share of", tiling.untiled_fraction,
-                                          "of it fits no catalogue brick; limit", 0.2));
+    outcome.rejections.push_back({describe("part of a split segment: a share of", tiling.untiled_fraction,
+                                           "of it fits no catalogue brick; limit", 0.2),
+                                  {}, 0});
   return outcome;
 }
 
