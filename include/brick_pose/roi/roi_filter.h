@@ -88,8 +88,8 @@ using RoiResult = std::variant<BrickCandidate, std::string>;
 struct RoiRejection
 {
   std::string reason;
-  /// The part's footprint (a tile, a side-by-side cut); empty when the
-  /// reason is about the whole segment.
+  /// The part's footprint (a tile, a side-by-side cut, a part between
+  /// depth steps); empty when the reason is about the whole segment.
   cv::Rect part_box_px;
   int part_area_px = 0;
 };

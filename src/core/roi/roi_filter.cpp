@@ -47,6 +47,13 @@ std::string describe(const std::string& what, double value, const std::string& r
   return text.str();
 }
 
+/// Why one part of a split segment (a tile, a side-by-side cut, a part
+/// between depth steps) was dropped, reported over that part's footprint.
+RoiRejection partRejection(const Segment& part, const std::string& reason)
+{
+  return {"part of a split segment: " + reason, part.bounding_box_px, part.area_px};
+}
+
 template <typename T>
 std::array<T, 4> rotated(const std::array<T, 4>& values, int start)
 {
@@ -533,7 +540,7 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
         std::move(split->rejections.begin(), split->rejections.end(), std::back_inserter(outcome.rejections));
         continue;
       }
-    outcome.rejections.push_back({"part of a split segment: " + *part_reason, part.bounding_box_px, part.area_px});
+    outcome.rejections.push_back(partRejection(part, *part_reason));
   }
   return outcome;
 }
@@ -559,7 +566,7 @@ std::optional<RoiOutcome> RoiFilter::splitMerged(const RgbdFrame& frame, const S
     if (!reason) reason = assignType(frame, context, part, candidate);
     if (reason)
     {
-      outcome.rejections.push_back({"part of a split segment: " + *reason, part.bounding_box_px, part.area_px});
+      outcome.rejections.push_back(partRejection(part, *reason));
       continue;
     }
     judgeCompleteness(frame, context, true, candidate);
@@ -725,10 +732,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   {
     if (cloud_timings) *cloud_timings += tile_timings[k];
     if (reasons[k])
-    {
-      const Segment& part = tiling.tiles[k].segment;
-      outcome.rejections.push_back({"part of a split segment: " + *reasons[k], part.bounding_box_px, part.area_px});
-    }
+      outcome.rejections.push_back(partRejection(tiling.tiles[k].segment, *reasons[k]));
     else
       outcome.candidates.push_back(std::move(candidates[k]));
   }
