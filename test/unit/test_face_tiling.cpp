@@ -134,6 +134,68 @@ TEST(FaceTiling, ThreeGreensSideBySideWithFaintGroovesAreThreeTiles)
   }
 }
 
+TEST(FaceTiling, SeamEvidenceReadOnTwoThreadsTilesAsOnOne)
+{
+  test::TouchingPlatesScene scene = rowScene(3, 0.6, 0.2);
+  scene.groove_depth_m = 0.002;
+  const RgbdFrame frame = scene.frame();
+  const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
+  const std::vector<Segment> segments = HsvSegmenter().segment(frame, catalogue);
+  ASSERT_EQ(segments.size(), 1u);
+  FaceTilingParams two_threads;
+  two_threads.worker_threads = 2;
+  const std::vector<const BrickType*> types{&catalogue.at("green"), &catalogue.at("red")};
+  const FaceTiling one = tileFace(frame, segments[0], measuredUnion(scene), types, 0.03, FaceTilingParams(),
+                                  EdgeEvidenceParams());
+  const FaceTiling two = tileFace(frame, segments[0], measuredUnion(scene), types, 0.03, two_threads,
+                                  EdgeEvidenceParams());
+  ASSERT_EQ(one.tiles.size(), 3u);
+  ASSERT_EQ(two.tiles.size(), one.tiles.size());
+  EXPECT_EQ(two.cuts, one.cuts);
+  EXPECT_EQ(two.seen_cuts, one.seen_cuts);
+  EXPECT_EQ(two.grooved_cuts, one.grooved_cuts);
+  EXPECT_EQ(two.untiled_fraction, one.untiled_fraction);
+  for (std::size_t k = 0; k < one.tiles.size(); ++k)
+  {
+    EXPECT_EQ(two.tiles[k].type_name, one.tiles[k].type_name);
+    EXPECT_EQ(two.tiles[k].seam_seen, one.tiles[k].seam_seen);
+    for (int c = 0; c < 4; ++c) EXPECT_EQ((two.tiles[k].corners_m[c] - one.tiles[k].corners_m[c]).norm(), 0.0);
+    EXPECT_EQ(two.tiles[k].segment.area_px, one.tiles[k].segment.area_px);
+  }
+}
+
+TEST(FaceTiling, TileSegmentsAreCutOnlyForTheTilingKept)
+{
+  test::TouchingPlatesScene scene = rowScene(3, 0.6, 0.2);
+  scene.groove_depth_m = 0.002;
+  const RgbdFrame frame = scene.frame();
+  const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
+  const std::vector<Segment> segments = HsvSegmenter().segment(frame, catalogue);
+  ASSERT_EQ(segments.size(), 1u);
+  const std::vector<const BrickType*> greens{&catalogue.at("green")};
+  std::vector<FaceTiling> compared =
+      tileFaceEach(frame, segments[0], measuredUnion(scene), {greens, greens}, 0.03, FaceTilingParams(),
+                   EdgeEvidenceParams(), [](std::size_t, const std::vector<FaceTiling>&) { return true; });
+  ASSERT_EQ(compared.size(), 2u);
+  ASSERT_EQ(compared[0].tiles.size(), 3u);
+  for (const FaceTile& tile : compared[0].tiles) EXPECT_EQ(tile.segment.area_px, 0) << "cut before one is kept";
+  cutTileSegments(frame, segments[0], compared[0]);
+  const FaceTiling kept = tileFace(frame, segments[0], measuredUnion(scene), greens, 0.03, FaceTilingParams(),
+                                   EdgeEvidenceParams());
+  ASSERT_EQ(kept.tiles.size(), 3u);
+  int tiled_px = 0;
+  for (std::size_t k = 0; k < kept.tiles.size(); ++k)
+  {
+    EXPECT_GT(compared[0].tiles[k].segment.area_px, 0);
+    EXPECT_EQ(compared[0].tiles[k].segment.area_px, kept.tiles[k].segment.area_px);
+    EXPECT_EQ(compared[0].tiles[k].segment.bounding_box_px, kept.tiles[k].segment.bounding_box_px);
+    tiled_px += kept.tiles[k].segment.area_px;
+  }
+  // Neighbouring tiles may share the pixels their common edge runs through.
+  EXPECT_GT(tiled_px, 0.9 * segments[0].area_px);
+  EXPECT_LT(tiled_px, 1.05 * segments[0].area_px);
+}
+
 TEST(FaceTiling, TouchingRowWithSeamsGivesCompleteBricksInHsvMode)
 {
   test::TouchingPlatesScene scene = rowScene(3, 0.6, 0.2);

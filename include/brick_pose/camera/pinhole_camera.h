@@ -27,14 +27,24 @@ struct PinholeCamera
   /// length, empty image, principal point far outside the image).
   void validate() const;
 
+  // The three projections are defined here, inline: the ROI stage calls
+  // them per pixel and per grid cell, where an out-of-line call cost more
+  // than the arithmetic.
+
   /// Pixel of a point in the optical frame; z must be > 0.
-  Eigen::Vector2d project(const Eigen::Vector3d& point_m) const;
+  Eigen::Vector2d project(const Eigen::Vector3d& point_m) const
+  {
+    return {fx_px * point_m.x() / point_m.z() + cx_px, fy_px * point_m.y() / point_m.z() + cy_px};
+  }
 
   /// Inverse projection of pixel (u, v) at depth Z (metres along the optical axis).
-  Eigen::Vector3d backProject(double u_px, double v_px, double depth_m) const;
+  Eigen::Vector3d backProject(double u_px, double v_px, double depth_m) const
+  {
+    return {(u_px - cx_px) * depth_m / fx_px, (v_px - cy_px) * depth_m / fy_px, depth_m};
+  }
 
   /// Unit-less ray direction (z = 1) through pixel (u, v).
-  Eigen::Vector3d ray(double u_px, double v_px) const;
+  Eigen::Vector3d ray(double u_px, double v_px) const { return {(u_px - cx_px) / fx_px, (v_px - cy_px) / fy_px, 1.0}; }
 
   /// Whether pixel (u, v) lies in the image, at least `margin_px` inside its
   /// outer edge (the edge of the first and last pixels, at -0.5 and

@@ -57,6 +57,8 @@ struct FaceTilingParams
   double min_visible_fraction = 0.4;
   /// Largest number of tiles per segment.
   int max_tiles = 48;
+  /// Threads reading a face's seam evidence (one per direction of its grid).
+  int worker_threads = 1;
 
   void validate() const;  ///< Throws ConfigError naming the field.
 };
@@ -101,9 +103,14 @@ FaceTiling tileFace(const RgbdFrame& frame, const Segment& segment, const BrickC
 /// The same face tiled with each of `type_sets` in turn (sharing the raster
 /// and the seam evidence, which do not depend on the types), skipping the
 /// sets `wanted` refuses given the tilings made so far; the tilings made,
-/// in order.
+/// in order. Their tiles' segments are left empty: most tilings are
+/// compared and dropped, and cutTileSegments() cuts the one kept.
 std::vector<FaceTiling> tileFaceEach(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
                                      const std::vector<std::vector<const BrickType*>>& type_sets, double tolerance_m,
                                      const FaceTilingParams& params, const EdgeEvidenceParams& evidence_params,
                                      const std::function<bool(std::size_t set, const std::vector<FaceTiling>& made)>& wanted);
+
+/// Fills each tile's segment: the pixels of `segment` (the face tiled)
+/// inside the tile's image.
+void cutTileSegments(const RgbdFrame& frame, const Segment& segment, FaceTiling& tiling);
 }  // namespace brick_pose

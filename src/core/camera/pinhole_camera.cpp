@@ -38,21 +38,6 @@ void PinholeCamera::validate() const
     fail("cy", cy_px, "must lie near the image (0 .. height)");
 }
 
-Eigen::Vector2d PinholeCamera::project(const Eigen::Vector3d& point_m) const
-{
-  return {fx_px * point_m.x() / point_m.z() + cx_px, fy_px * point_m.y() / point_m.z() + cy_px};
-}
-
-Eigen::Vector3d PinholeCamera::backProject(double u_px, double v_px, double depth_m) const
-{
-  return {(u_px - cx_px) * depth_m / fx_px, (v_px - cy_px) * depth_m / fy_px, depth_m};
-}
-
-Eigen::Vector3d PinholeCamera::ray(double u_px, double v_px) const
-{
-  return {(u_px - cx_px) / fx_px, (v_px - cy_px) / fy_px, 1.0};
-}
-
 bool PinholeCamera::contains(double u_px, double v_px, double margin_px) const
 {
   const double low = margin_px - 0.5;

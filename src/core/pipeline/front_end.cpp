@@ -29,6 +29,7 @@ RoiFilterParams pieceFilterParams(const FrontEndParams& params)
   params.roi.validate();  // as configured, before the piece threshold replaces one value
   RoiFilterParams roi = params.roi;
   roi.worker_threads = std::max(1, params.worker_threads);  // the bricks of a merged face on the front end's threads
+  roi.tiling.worker_threads = roi.worker_threads;            // and its seam evidence
   if (params.merge_face_pieces)
     roi.dimensions.min_visible_fraction = std::min(roi.dimensions.min_visible_fraction, kMinPieceFraction);
   return roi;

@@ -627,7 +627,9 @@ FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& seg
     if (tiling.tiles.size() < 2 || tiling.cuts == 0 || supportedTileCount(tiling) == 0) continue;
     if (!best || rank(tiling) > rank(*best)) best = &tiling;
   }
-  return best ? std::move(*best) : FaceTiling();
+  if (!best) return FaceTiling();
+  cutTileSegments(frame, segment, *best);
+  return std::move(*best);
 }
 
 bool RoiFilter::standsUpFromItsSurroundings(const RgbdFrame& frame, const Segment& segment,
