@@ -869,6 +869,13 @@ private:
     const int untiled = free_.count(rect.i0, rect.i1, rect.j0, rect.j1);
     int hidden = off_image_.count(rect.i0, rect.i1, rect.j0, rect.j1);
     const int other = in_grid - untiled - hidden;
+    // Refused before the cells beyond the grid are sampled where the counts
+    // already decide: too little of the tile is untiled segment, or the
+    // segment is too small a share even if every cell beyond were hidden
+    // (the coverage can only fall as visible cells are found there).
+    const double visible = static_cast<double>(untiled) / total;
+    if (visible < params_.min_visible_fraction) return result;  // so untiled > 0
+    if (static_cast<double>(untiled) / (untiled + other) < params_.min_coverage) return result;
     int visible_other = 0;
     // Every third cell (those with a + b divisible by 3) stands for three.
     auto sampleBeyond = [&](int from_a, int to_a, int b) {
@@ -890,7 +897,6 @@ private:
     if (seen == 0) return result;
     const double coverage = static_cast<double>(untiled) / seen;
     const double foreign = static_cast<double>(other + visible_other) / seen;
-    const double visible = static_cast<double>(untiled) / total;
     if (coverage < params_.min_coverage || foreign > params_.max_foreign_fraction ||
         visible < params_.min_visible_fraction)
       return result;
