@@ -2,16 +2,18 @@
 # Front-end times of two builds of bench_frontend, run alternately (not part
 # of CI). On this project's shared 2-core VM the p50 of unchanged code moves
 # by up to a third between runs minutes apart, so one run of each build
-# cannot tell a 10 % change; runs taken turn about, A B A B ..., share the
-# machine's slow drift. Prints, per scene class and resolution, each build's
-# colour-free stage p50s (ms, wall) in every run and their median over the
-# runs.
+# cannot tell a 10 % change; runs taken alternately, in the order A B B A
+# A B ..., share the machine's slow drift and neither build always goes
+# first. Prints, per scene class and resolution, each build's colour-free
+# total p50 (ms, wall) in every run and the medians over the runs of its
+# segmentation, ROI and total p50s.
 #
 #   bench/compare_frontend_time.sh OLD_BENCH NEW_BENCH [RUNS] [KINDS] [RESOLUTIONS]
 #
 # KINDS and RESOLUTIONS are bench_frontend --only lists (defaults: every
 # rig class; 640x480,1280x720); RUNS defaults to 3. The builds' answers are
-# not compared here: their tables are in the logs under $TMPDIR.
+# not compared here: their tables are in the logs under $TMPDIR (stderr of
+# each run beside its table).
 set -euo pipefail
 if (( $# < 2 )); then
   sed -n '2,14p' "$0" >&2
@@ -23,8 +25,12 @@ runs=${3:-3}
 kinds=${4:-single,organised_pile,unorganised_pile,touching_rows,pallet_layer,pallet_stack,table_boxes}
 resolutions=${5:-640x480,1280x720}
 for bench in "$old" "$new"; do
-  [[ -x "$bench" ]] || { echo "compare_frontend_time: $bench is not an executable" >&2; exit 2; }
+  [[ -f "$bench" && -x "$bench" ]] || { echo "compare_frontend_time: $bench is not an executable file" >&2; exit 2; }
 done
+old=$(realpath "$old")
+new=$(realpath "$new")
+# One stage-time row per class and resolution asked for.
+expected_rows=$(( $(tr ',' '\n' <<<"$kinds" | grep -c .) * $(tr ',' '\n' <<<"$resolutions" | grep -c .) ))
 logs=$(mktemp -d "${TMPDIR:-/tmp}/compare_frontend_time.XXXXXX")
 echo "logs: $logs" >&2
 
@@ -38,12 +44,20 @@ stageRows() {
 }
 
 for (( run = 1; run <= runs; ++run )); do
-  for side in old new; do
+  sides=(old new)
+  (( run % 2 == 0 )) && sides=(new old)
+  for side in "${sides[@]}"; do
     bench=$old
     [[ $side == new ]] && bench=$new
     log="$logs/$side.$run.txt"
-    "$bench" --frames 100 --only "$kinds" colour_free "$resolutions" --no-mosd >"$log" 2>&1
-    stageRows "$log" | sed "s/^/$side|$run|/" >>"$logs/rows.txt"
+    "$bench" --frames 100 --only "$kinds" colour_free "$resolutions" --no-mosd >"$log" 2>"$logs/$side.$run.err" ||
+      { echo "compare_frontend_time: $bench failed (run $run): $log, $logs/$side.$run.err" >&2; exit 1; }
+    rows=$(stageRows "$log")
+    if (( $(grep -c . <<<"$rows") != expected_rows )); then
+      echo "compare_frontend_time: $log has $(grep -c . <<<"$rows") stage-time rows, not $expected_rows (kinds or resolutions unknown?)" >&2
+      exit 1
+    fi
+    sed "s/^/$side|$run|/" <<<"$rows" >>"$logs/rows.txt"
   done
   echo "run $run of $runs done" >&2
 done
@@ -73,4 +87,4 @@ awk -F'|' '
              part[1], part[2], part[3], totals[order[k]],
              median(segmentation[order[k]]), median(roi[order[k]]), median(totals[order[k]])
     }
-  }' "$logs/rows.txt" | sort -t$'\t' -k1,1 | cut -f2-
+  }' "$logs/rows.txt" | LC_ALL=C sort -t$'\t' -k1,1 | cut -f2-

@@ -134,6 +134,9 @@ TEST(FaceTiling, ThreeGreensSideBySideWithFaintGroovesAreThreeTiles)
   }
 }
 
+// The two directions of the seam evidence are read on two threads from
+// pixels made before them: the tiling must not depend on the thread count
+// (a check of determinism; the sanitizer build is not ThreadSanitizer).
 TEST(FaceTiling, SeamEvidenceReadOnTwoThreadsTilesAsOnOne)
 {
   test::TouchingPlatesScene scene = rowScene(3, 0.6, 0.2);

@@ -65,8 +65,9 @@ struct FrontEndParams
   /// A pile's segments are independent and a long brick's face alone can
   /// take as long as the rest, so two workers on a 2-core machine about
   /// halve the ROI stage. The same threads search the plate colours
-  /// (HsvSegmenterParams::worker_threads) and measure the bricks a merged
-  /// face is cut into (RoiFilterParams::worker_threads).
+  /// (HsvSegmenterParams::worker_threads), read the seam evidence of a
+  /// merged face (FaceTilingParams::worker_threads) and measure the bricks
+  /// it is cut into (RoiFilterParams::worker_threads).
   int worker_threads = 2;
 
   static CloudProcessorParams defaultSegmentCloudParams();

@@ -57,7 +57,8 @@ struct FaceTilingParams
   double min_visible_fraction = 0.4;
   /// Largest number of tiles per segment.
   int max_tiles = 48;
-  /// Threads reading a face's seam evidence (one per direction of its grid).
+  /// Threads reading a face's seam evidence (one per direction of its
+  /// grid; the front end sets its own worker_threads).
   int worker_threads = 1;
 
   void validate() const;  ///< Throws ConfigError naming the field.
@@ -74,6 +75,8 @@ struct FaceTile
   /// follow its boundary), and whether a seam was seen along each cut.
   std::array<bool, 4> cut{{false, false, false, false}};
   std::array<bool, 4> seam_seen{{false, false, false, false}};
+  /// The tile's pixels; empty in tileFaceEach()'s tilings until
+  /// cutTileSegments().
   Segment segment;
 };
 

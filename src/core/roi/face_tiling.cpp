@@ -48,10 +48,11 @@ double median(std::vector<double> values)
   return *middle;
 }
 
-/// The values that are numbers, or an evenly strided sample of at most
-/// `max_count` of them: a layer's grid has 10^5 lines x samples, whose
-/// exact median cost more than reading them, while 8192 samples put the
-/// median within about 0.015 standard deviations of it.
+/// The values that are numbers, or an evenly strided sample of them
+/// (between max_count / 2 and max_count values): a layer's grid has 10^5
+/// lines x samples, whose exact median cost more than reading them, while
+/// 4096-8192 samples put the median within about 0.02 standard deviations
+/// of it.
 std::vector<double> evenSample(const std::vector<float>& values, std::size_t max_count)
 {
   const auto numbers = static_cast<std::size_t>(
@@ -68,7 +69,7 @@ std::vector<double> evenSample(const std::vector<float>& values, std::size_t max
   return sample;
 }
 
-/// Values in the line evidence's location and scale estimates (see sampledMedian).
+/// Values in the line evidence's location and scale estimates (see evenSample).
 constexpr std::size_t kMaxMedianSamples = 8192;
 
 /// Seam dips sampled along the lines of one direction of the grid. Line `l`
@@ -195,6 +196,8 @@ private:
 
 /// The segment rasterised on its plane. One per face and thread: its const
 /// queries fill caches (pixels read, cells beyond the grid) on first use.
+/// The line evidence alone may be read on several threads: it reads the
+/// pixels it is given (pixelSamples(), made first) and no cache.
 class PlaneGrid
 {
 public:
@@ -281,13 +284,14 @@ public:
   }
 
   /// Dips across lines of constant s (along_s = true: lines i = 0..nx,
-  /// samples along t) or of constant t.
-  LineEvidence lineEvidence(bool constant_s, int arm_px, double on_plane_m,
+  /// samples along t) or of constant t, read from `pixels`
+  /// (pixelSamples(arm_px)).
+  LineEvidence lineEvidence(const PixelSamples& pixels, bool constant_s, int arm_px, double on_plane_m,
                             const std::array<double, 2>& sigma_floor) const;
 
-  /// Reads the pixels lineEvidence(…, arm_px, …) needs into the grid's cache
-  /// (done by the first lineEvidence otherwise).
-  void readPixelSamples(int arm_px) const { pixelSamples(arm_px + halfWindowPx() + 2); }
+  /// The pixels the line evidence with arms of `arm_px` reads: the grid's
+  /// image and a margin around it, made on first use.
+  const PixelSamples& pixelSamples(int arm_px) const { return pixelSamplesWithin(arm_px + halfWindowPx() + 2); }
 
 private:
   /// The lines lie a cell apart, possibly more than a pixel: the middle of a
@@ -295,9 +299,8 @@ private:
   /// between two lines still shows.
   int halfWindowPx() const { return std::max(0, static_cast<int>(std::ceil(0.5 * cell_px_ - 0.5))); }
 
-  /// The pixels the line evidence reads: the grid's image, `margin_px`
-  /// around it, made on first use.
-  const PixelSamples& pixelSamples(int margin_px) const
+  /// The grid's image and `margin_px` around it, made on first use.
+  const PixelSamples& pixelSamplesWithin(int margin_px) const
   {
     if (!pixel_samples_)
     {
@@ -362,7 +365,7 @@ private:
   mutable std::optional<PixelSamples> pixel_samples_;
 };
 
-LineEvidence PlaneGrid::lineEvidence(bool constant_s, int arm_px, double on_plane_m,
+LineEvidence PlaneGrid::lineEvidence(const PixelSamples& pixels, bool constant_s, int arm_px, double on_plane_m,
                                      const std::array<double, 2>& sigma_floor) const
 {
   LineEvidence evidence;
@@ -373,7 +376,6 @@ LineEvidence PlaneGrid::lineEvidence(bool constant_s, int arm_px, double on_plan
   std::array<std::vector<float>, 2> raw;
   for (auto& channel : raw)
     channel.assign(static_cast<std::size_t>(evidence.lines) * evidence.length, std::numeric_limits<float>::quiet_NaN());
-  const PixelSamples& pixels = pixelSamples(arm_px + half_window + 2);
   auto sample = [&](const Eigen::Vector2d& p, double& offset_m, double& grey) {
     const int u = roundToInt(p.x()), v = roundToInt(p.y());
     if (u < 0 || v < 0 || u >= width || v >= height) return false;
@@ -478,13 +480,13 @@ public:
                              const EdgeEvidenceParams& evidence_params)
   {
     const std::array<double, 2> floor{{evidence_params.min_groove_m, evidence_params.min_line_contrast}};
-    // The two directions read the same pixels and nothing else the grid
-    // caches: with the pixels read first, each goes on its own thread.
-    grid.readPixelSamples(params.seam_arm_px);
+    // The two directions read the same pixels, made here, and nothing the
+    // grid caches: each goes on its own thread.
+    const PixelSamples& pixels = grid.pixelSamples(params.seam_arm_px);
     Evidence evidence;
     parallelFor(2, params.worker_threads, [&](int direction) {
       (direction == 0 ? evidence.along_s : evidence.along_t) =
-          grid.lineEvidence(direction == 0, params.seam_arm_px, onPlaneM(grid, evidence_params), floor);
+          grid.lineEvidence(pixels, direction == 0, params.seam_arm_px, onPlaneM(grid, evidence_params), floor);
     });
     return evidence;
   }
@@ -867,12 +869,12 @@ private:
     const int in_j0 = std::max(rect.j0, 0), in_j1 = std::min(rect.j1, grid_.ny());
     const int in_grid = std::max(0, in_i1 - in_i0) * std::max(0, in_j1 - in_j0);
     const int untiled = free_.count(rect.i0, rect.i1, rect.j0, rect.j1);
-    int hidden = off_image_.count(rect.i0, rect.i1, rect.j0, rect.j1);
+    const int hidden = off_image_.count(rect.i0, rect.i1, rect.j0, rect.j1);
     const int other = in_grid - untiled - hidden;
-    // Refused before the cells beyond the grid are sampled where the counts
-    // already decide: too little of the tile is untiled segment, or the
-    // segment is too small a share even if every cell beyond were hidden
-    // (the coverage can only fall as visible cells are found there).
+    // Refused before the cells beyond the grid are sampled when the counts
+    // inside it already refuse: too little of the tile is untiled segment,
+    // or the segment's share is too low even if every cell out there were
+    // hidden (each visible cell found there only lowers it).
     const double visible = static_cast<double>(untiled) / total;
     if (visible < params_.min_visible_fraction) return result;  // so untiled > 0
     if (static_cast<double>(untiled) / (untiled + other) < params_.min_coverage) return result;
@@ -881,7 +883,7 @@ private:
     auto sampleBeyond = [&](int from_a, int to_a, int b) {
       int a = from_a;
       while (a < to_a && (a + b) % 3 != 0) ++a;
-      for (; a < to_a; a += 3) (grid_.hiddenBeyondGrid(a, b) ? hidden : visible_other) += 3;
+      for (; a < to_a; a += 3) visible_other += grid_.hiddenBeyondGrid(a, b) ? 0 : 3;
     };
     for (int b = rect.j0; b < rect.j1; ++b)
     {
@@ -897,9 +899,7 @@ private:
     if (seen == 0) return result;
     const double coverage = static_cast<double>(untiled) / seen;
     const double foreign = static_cast<double>(other + visible_other) / seen;
-    if (coverage < params_.min_coverage || foreign > params_.max_foreign_fraction ||
-        visible < params_.min_visible_fraction)
-      return result;
+    if (coverage < params_.min_coverage || foreign > params_.max_foreign_fraction) return result;
 
     result.edge_strength = support_i.strength + support_j.strength;
     result.visible_bonus = 1e-3 * visible;
@@ -1154,7 +1154,7 @@ FaceTiling describeTiling(const RgbdFrame& frame, const Segment& segment, const 
 {
   FaceTiling tiling;
   tiling.untiled_fraction = static_cast<double>(grid.freeCount()) / segment_cells;
-  tiling.tiles.reserve(placed.size());  // a growing vector would copy the tiles' segments
+  tiling.tiles.reserve(placed.size());
   for (const Tiler::Placed& tile : placed)
   {
     FaceTile face;
