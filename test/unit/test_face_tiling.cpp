@@ -111,16 +111,29 @@ BrickCandidate measuredUnion(const test::TouchingPlatesScene& scene)
   return measured;
 }
 
+/// Three greens side by side with faint 2 mm grooves between them, which
+/// the HSV segmenter sees as one colour blob: the row the tiling tests cut.
+struct GroovedGreenRow
+{
+  static test::TouchingPlatesScene groovedScene()
+  {
+    test::TouchingPlatesScene scene = rowScene(3, 0.6, 0.2);
+    scene.groove_depth_m = 0.002;
+    return scene;
+  }
+
+  test::TouchingPlatesScene scene = groovedScene();
+  RgbdFrame frame = scene.frame();
+  BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
+  std::vector<Segment> segments = HsvSegmenter().segment(frame, catalogue);
+};
+
 TEST(FaceTiling, ThreeGreensSideBySideWithFaintGroovesAreThreeTiles)
 {
-  test::TouchingPlatesScene scene = rowScene(3, 0.6, 0.2);
-  scene.groove_depth_m = 0.002;
-  const RgbdFrame frame = scene.frame();
-  const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
-  const std::vector<Segment> segments = HsvSegmenter().segment(frame, catalogue);
-  ASSERT_EQ(segments.size(), 1u) << "one colour blob for the whole row";
-  const FaceTiling tiling = tileFace(frame, segments[0], measuredUnion(scene), {&catalogue.at("green")}, 0.03,
-                                     FaceTilingParams(), EdgeEvidenceParams());
+  const GroovedGreenRow row;
+  ASSERT_EQ(row.segments.size(), 1u) << "one colour blob for the whole row";
+  const FaceTiling tiling = tileFace(row.frame, row.segments[0], measuredUnion(row.scene),
+                                     {&row.catalogue.at("green")}, 0.03, FaceTilingParams(), EdgeEvidenceParams());
   ASSERT_EQ(tiling.tiles.size(), 3u);
   EXPECT_EQ(tiling.seen_cuts, tiling.cuts);
   EXPECT_GE(tiling.cuts, 2);
@@ -139,18 +152,14 @@ TEST(FaceTiling, ThreeGreensSideBySideWithFaintGroovesAreThreeTiles)
 // (a check of determinism; the sanitizer build is not ThreadSanitizer).
 TEST(FaceTiling, SeamEvidenceReadOnTwoThreadsTilesAsOnOne)
 {
-  test::TouchingPlatesScene scene = rowScene(3, 0.6, 0.2);
-  scene.groove_depth_m = 0.002;
-  const RgbdFrame frame = scene.frame();
-  const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
-  const std::vector<Segment> segments = HsvSegmenter().segment(frame, catalogue);
-  ASSERT_EQ(segments.size(), 1u);
+  const GroovedGreenRow row;
+  ASSERT_EQ(row.segments.size(), 1u);
   FaceTilingParams two_threads;
   two_threads.worker_threads = 2;
-  const std::vector<const BrickType*> types{&catalogue.at("green"), &catalogue.at("red")};
-  const FaceTiling one = tileFace(frame, segments[0], measuredUnion(scene), types, 0.03, FaceTilingParams(),
-                                  EdgeEvidenceParams());
-  const FaceTiling two = tileFace(frame, segments[0], measuredUnion(scene), types, 0.03, two_threads,
+  const std::vector<const BrickType*> types{&row.catalogue.at("green"), &row.catalogue.at("red")};
+  const FaceTiling one = tileFace(row.frame, row.segments[0], measuredUnion(row.scene), types, 0.03,
+                                  FaceTilingParams(), EdgeEvidenceParams());
+  const FaceTiling two = tileFace(row.frame, row.segments[0], measuredUnion(row.scene), types, 0.03, two_threads,
                                   EdgeEvidenceParams());
   ASSERT_EQ(one.tiles.size(), 3u);
   ASSERT_EQ(two.tiles.size(), one.tiles.size());
@@ -169,22 +178,19 @@ TEST(FaceTiling, SeamEvidenceReadOnTwoThreadsTilesAsOnOne)
 
 TEST(FaceTiling, TileSegmentsAreCutOnlyForTheTilingKept)
 {
-  test::TouchingPlatesScene scene = rowScene(3, 0.6, 0.2);
-  scene.groove_depth_m = 0.002;
-  const RgbdFrame frame = scene.frame();
-  const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
-  const std::vector<Segment> segments = HsvSegmenter().segment(frame, catalogue);
-  ASSERT_EQ(segments.size(), 1u);
-  const std::vector<const BrickType*> greens{&catalogue.at("green")};
+  const GroovedGreenRow row;
+  ASSERT_EQ(row.segments.size(), 1u);
+  const std::vector<const BrickType*> greens{&row.catalogue.at("green")};
   std::vector<FaceTiling> compared =
-      tileFaceEach(frame, segments[0], measuredUnion(scene), {greens, greens}, 0.03, FaceTilingParams(),
-                   EdgeEvidenceParams(), [](std::size_t, const std::vector<FaceTiling>&) { return true; });
+      tileFaceEach(row.frame, row.segments[0], measuredUnion(row.scene), {greens, greens}, 0.03,
+                   FaceTilingParams(), EdgeEvidenceParams(),
+                   [](std::size_t, const std::vector<FaceTiling>&) { return true; });
   ASSERT_EQ(compared.size(), 2u);
   ASSERT_EQ(compared[0].tiles.size(), 3u);
   for (const FaceTile& tile : compared[0].tiles) EXPECT_EQ(tile.segment.area_px, 0) << "cut before one is kept";
-  cutTileSegments(frame, segments[0], compared[0]);
-  const FaceTiling kept = tileFace(frame, segments[0], measuredUnion(scene), greens, 0.03, FaceTilingParams(),
-                                   EdgeEvidenceParams());
+  cutTileSegments(row.frame, row.segments[0], compared[0]);
+  const FaceTiling kept = tileFace(row.frame, row.segments[0], measuredUnion(row.scene), greens, 0.03,
+                                   FaceTilingParams(), EdgeEvidenceParams());
   ASSERT_EQ(kept.tiles.size(), 3u);
   int tiled_px = 0;
   for (std::size_t k = 0; k < kept.tiles.size(); ++k)
@@ -195,8 +201,8 @@ TEST(FaceTiling, TileSegmentsAreCutOnlyForTheTilingKept)
     tiled_px += kept.tiles[k].segment.area_px;
   }
   // Neighbouring tiles may share the pixels their common edge runs through.
-  EXPECT_GT(tiled_px, 0.9 * segments[0].area_px);
-  EXPECT_LT(tiled_px, 1.05 * segments[0].area_px);
+  EXPECT_GT(tiled_px, 0.9 * row.segments[0].area_px);
+  EXPECT_LT(tiled_px, 1.05 * row.segments[0].area_px);
 }
 
 TEST(FaceTiling, TouchingRowWithSeamsGivesCompleteBricksInHsvMode)
