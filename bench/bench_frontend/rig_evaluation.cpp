@@ -6,6 +6,7 @@
 #include <optional>
 
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "brick_pose/eval/match_overlay.h"
 #include "brick_pose/eval/rig_truth.h"
@@ -122,6 +123,10 @@ RigResults runRig(const std::vector<BrickCatalogue>& catalogues, const std::vect
           std::replace(file.begin(), file.end(), ' ', '_');
           cv::imwrite(options.overlay_dir + "/" + file + ".png",
                       eval::drawMatchOverlay(frame.rgb, truth, result.candidates, match, camera));
+          // The frame as the front end saw it, for reading seams by eye.
+          cv::Mat bgr;
+          cv::cvtColor(frame.rgb, bgr, cv::COLOR_RGB2BGR);
+          cv::imwrite(options.overlay_dir + "/" + file + "_rgb.png", bgr);
         }
       }
     }

@@ -518,6 +518,32 @@ TEST(FaceTiling, TwoBricksOffsetEndToEndAreTiledThoughTheirQuadLeavesTheImage)
   }
 }
 
+TEST(FaceTiling, StaggeredRowsAreCutWhereTheirBricksMeetAlone)
+{
+  // Two rows of reds end to end, the second pushed half a brick along the
+  // first, as bricks are laid: the long seam between the rows runs past
+  // either end of the other row, where a row's side bounds the layer. A cut
+  // along a brick's side is read only where the other row lies beyond it;
+  // read along the whole side, its stretch at the layer's edge hid the seam
+  // (touching rows, frame 106 in VGA: two reds refused, "cut shows no seam").
+  test::TouchingPlatesScene scene = rowScene(1, 0.3, 0.2);
+  const cv::Vec3b plain(200, 30, 30);
+  scene.plates = {{{-0.3, 0.0}, {0.0, 0.2}, plain},
+                  {{0.0, 0.0}, {0.3, 0.2}, plain},
+                  {{-0.15, -0.2}, {0.15, 0.0}, plain},
+                  {{0.15, -0.2}, {0.45, 0.0}, plain}};
+  scene.line_darkening = 40.0;
+  scene.line_half_width_m = 0.002;
+  RgbdFrame frame = scene.frame();
+  // A floor of light and dark tiles around the layer, as the rig's.
+  for (int v = 0; v < frame.height_px(); ++v)
+    for (int u = 0; u < frame.width_px(); ++u)
+      if (frame.depthAt(u, v) > scene.origin_m.z() + 0.1)
+        frame.rgb.at<cv::Vec3b>(v, u) = ((u / 12 + v / 12) % 2 == 0) ? cv::Vec3b(90, 88, 85) : cv::Vec3b(180, 176, 170);
+  const FrontEnd front_end(BrickCatalogue::mbzirc2020(), colourFreeParams());
+  ASSERT_NO_FATAL_FAILURE(expectWholeBricks(front_end.process(frame), scene, 4u, "red"));
+}
+
 TEST(FaceTiling, ARowRunningOffTheImageIsTiledFromTheSeamsItShows)
 {
   // Reds end to end in a row that runs off the image at both ends, the

@@ -1130,6 +1130,102 @@ void markSharedCuts(const std::vector<Tiler::Placed>& placed, FaceTiling& tiling
     }
 }
 
+/// The stretches of edge k of `rect` (a tile's cut) with a neighbour beyond
+/// it, where the segment goes on past the edge for more than a D4xx fringe:
+/// [first, last) cells of the other axis, gaps of a few cells (dropouts
+/// along the seam) bridged, stretches too short to read a seam along left
+/// out. Along the rest of the edge it bounds the segment (a row of bricks
+/// offset from the next, one brick longer than its neighbour): no seam is
+/// there to see, and a seam clear where the bricks meet was diluted out of
+/// sight when read there too. Cells without depth count as no neighbour,
+/// so a cut with nothing seen beyond it is read whole, as before.
+std::vector<std::pair<int, int>> cutNeighbours(const PlaneGrid& grid, const CellRect& rect, int k)
+{
+  // Past the deepest D4xx fringe of a step down (Tiler::kMaxFringeM, 2 cm)
+  // and a tile ending a little short of the segment's end.
+  constexpr double kBeyondM = 0.024;
+  constexpr int kReadCells = 3;
+  constexpr double kMinStretchM = 0.03;
+  constexpr int kMaxGapCells = 2;
+  const bool constant_s = k % 2 == 0;
+  const int outward = k < 2 ? -1 : 1;
+  const int line = rect.edgeLine(k);
+  const int limit = constant_s ? grid.ny() : grid.nx();
+  const int from = std::max(0, constant_s ? rect.j0 : rect.i0), to = std::min(limit, constant_s ? rect.j1 : rect.i1);
+  const int depth_cells = std::max(2, static_cast<int>(std::ceil(kBeyondM / grid.cellM())));
+  const int min_stretch_cells = std::max(3, static_cast<int>(std::ceil(kMinStretchM / grid.cellM())));
+  auto segmentAt = [&](int across, int along) {
+    const int i = constant_s ? across : along, j = constant_s ? along : across;
+    if (!grid.inGrid(i, j)) return false;
+    const std::uint8_t state = grid.state(i, j);
+    return state == kFree || state == kTiled;
+  };
+  // The segment goes on past depth_cells beyond the edge (one hole allowed).
+  auto neighbourAt = [&](int along) {
+    int held = 0;
+    for (int d = depth_cells; d < depth_cells + kReadCells; ++d)
+      held += segmentAt(outward > 0 ? line + d : line - 1 - d, along) ? 1 : 0;
+    return held >= kReadCells - 1;
+  };
+  std::vector<std::pair<int, int>> stretches;
+  int start = -1, last = -1;
+  auto close = [&]() {
+    if (start >= 0 && last + 1 - start >= min_stretch_cells) stretches.emplace_back(start, last + 1);
+    start = -1;
+  };
+  for (int along = from; along < to; ++along)
+  {
+    if (!neighbourAt(along)) continue;
+    if (start >= 0 && along - last - 1 > kMaxGapCells) close();
+    if (start < 0) start = along;
+    last = along;
+  }
+  close();
+  return stretches;
+}
+
+/// The seam along a tile's cut edge k, read along `stretches` (see
+/// cutNeighbours): confirmed only where every one shows it. An edge with
+/// none, or with one along all of it, is read whole.
+SeamScore cutSeam(const RgbdFrame& frame, const PlaneFit& plane, const PlaneGrid& grid, const CellRect& rect, int k,
+                  const std::vector<std::pair<int, int>>& stretches, const std::array<Eigen::Vector3d, 4>& corners_m,
+                  const EdgeEvidenceParams& evidence_params, double confirmed_strength, bool& confirmed)
+{
+  const int along_limit = k % 2 == 0 ? grid.ny() : grid.nx();
+  const int along_from = std::max(0, k % 2 == 0 ? rect.j0 : rect.i0);
+  const int along_to = std::min(along_limit, k % 2 == 0 ? rect.j1 : rect.i1);
+  const bool whole = stretches.empty() || (stretches.size() == 1 && stretches.front().first <= along_from &&
+                                           stretches.front().second >= along_to);
+  if (whole)
+  {
+    const SeamScore seam = scoreSeam(frame, plane, frame.camera.project(corners_m[k]),
+                                     frame.camera.project(corners_m[(k + 1) % 4]), evidence_params);
+    confirmed = seam.seen && seam.strength >= confirmed_strength;
+    return seam;
+  }
+  const int line = rect.edgeLine(k);
+  auto pixelAt = [&](int along) {
+    return frame.camera.project(k % 2 == 0 ? grid.point(line, along) : grid.point(along, line));
+  };
+  SeamScore weakest;
+  confirmed = true;
+  for (std::size_t n = 0; n < stretches.size(); ++n)
+  {
+    // In the edge's own direction (edges 0 and 3 run toward lower indices).
+    const bool descending = k == 0 || k == 3;
+    const int start = descending ? stretches[n].second : stretches[n].first;
+    const int end = descending ? stretches[n].first : stretches[n].second;
+    const SeamScore seam = scoreSeam(frame, plane, pixelAt(start), pixelAt(end), evidence_params);
+    confirmed = confirmed && seam.seen && seam.strength >= confirmed_strength;
+    const bool grooved = (n == 0 || weakest.groove_seen) && seam.groove_seen;
+    const double line_contrast = n == 0 ? seam.line_contrast : std::min(weakest.line_contrast, seam.line_contrast);
+    if (n == 0 || seam.strength < weakest.strength) weakest = seam;
+    weakest.groove_seen = grooved;
+    weakest.line_contrast = line_contrast;
+  }
+  return weakest;
+}
+
 /// The direction the tiling's rectangles run along: the quad's, unless the
 /// outline's straight stretches agree on another (see outline_axis.h). On a
 /// single rectangle the two agree within a degree, and the quad, fitted to
@@ -1173,10 +1269,10 @@ FaceTiling describeTiling(const RgbdFrame& frame, const Segment& segment, const 
       // see. Its own score, the largest of several noisy lines near each
       // nominal cut, is not trusted either: the seam must pass the edge
       // test along the cut, whose standard error comes from the scatter
-      // along the line.
-      const SeamScore seam = scoreSeam(frame, measured.plane, frame.camera.project(face.corners_m[k]),
-                                       frame.camera.project(face.corners_m[(k + 1) % 4]), evidence_params);
-      const bool confirmed = seam.seen && seam.strength >= kConfirmedSeamFactor * params.min_seam_strength;
+      // along the line, and only where a neighbour lies beyond the cut.
+      bool confirmed = false;
+      const SeamScore seam = cutSeam(frame, measured.plane, grid, r, k, cutNeighbours(grid, r, k), face.corners_m,
+                                     evidence_params, kConfirmedSeamFactor * params.min_seam_strength, confirmed);
       face.seam_seen[k] = confirmed;
       groove[k] = groove[k] && confirmed;
       tiling.weakest_cut_line = std::min(tiling.weakest_cut_line, seam.line_contrast);
