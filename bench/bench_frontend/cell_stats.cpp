@@ -116,16 +116,16 @@ void recordFrame(const FrontEndResult& result, double cpu_ms, const eval::SceneT
     }
     if (!candidate_match.legacy_true_positive)
     {
+      const std::string reason = falsePositiveReason(candidate, candidate_match, truth);
       // What covers a top without being it (a tile over two bricks, half of
       // one): its miss has no rejection to name.
       if (verbose)
         std::fprintf(stderr, "%s: not a top found: %s %.3f x %.3f m%s: %s (share %.2f, coverage %.2f)%s%s\n",
                      frame_name.c_str(), candidate.type_name.c_str(), candidate.length_m, candidate.width_m,
-                     candidate.complete ? ", complete" : "",
-                     falsePositiveReason(candidate, candidate_match, truth).c_str(), candidate_match.face_share,
+                     candidate.complete ? ", complete" : "", reason.c_str(), candidate_match.face_share,
                      candidate_match.coverage, candidate.partial_reason.empty() ? "" : "; partial: ",
                      candidate.partial_reason.c_str());
-      ++stats.false_positive_reasons[falsePositiveReason(candidate, candidate_match, truth)];
+      ++stats.false_positive_reasons[reason];
       continue;
     }
     const eval::FaceTruth& face = truth.faces[static_cast<std::size_t>(candidate_match.face)];

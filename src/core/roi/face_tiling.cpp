@@ -1184,6 +1184,13 @@ std::vector<std::pair<int, int>> cutNeighbours(const PlaneGrid& grid, const Cell
   return stretches;
 }
 
+/// Whether `seam` confirms a cut: seen, and at least `confirmed_strength`
+/// standard errors strong.
+bool confirmsCut(const SeamScore& seam, double confirmed_strength)
+{
+  return seam.seen && seam.strength >= confirmed_strength;
+}
+
 /// The seam between two pixels, or along the line through them turned by
 /// up to a few pixels at each end when it is not confirmed straight: a
 /// brick laid a degree askew of the tiling's axes draws its seam across
@@ -1195,61 +1202,59 @@ SeamScore tiltedSeam(const RgbdFrame& frame, const PlaneFit& plane, const Eigen:
                      const Eigen::Vector2d& b_px, const EdgeEvidenceParams& evidence_params, double confirmed_strength)
 {
   SeamScore best = scoreSeam(frame, plane, a_px, b_px, evidence_params);
-  auto confirmed = [&](const SeamScore& seam) { return seam.seen && seam.strength >= confirmed_strength; };
-  if (confirmed(best)) return best;
+  if (confirmsCut(best, confirmed_strength)) return best;
   const Eigen::Vector2d along = b_px - a_px;
   if (!(along.norm() > 1.0)) return best;
   const Eigen::Vector2d across = Eigen::Vector2d(-along.y(), along.x()).normalized();
   for (const double turn_px : {-2.0, -1.0, 1.0, 2.0})
   {
     const SeamScore seam = scoreSeam(frame, plane, a_px + turn_px * across, b_px - turn_px * across, evidence_params);
-    const bool better = confirmed(seam) != confirmed(best) ? confirmed(seam) : seam.strength > best.strength;
-    if (better) best = seam;
+    const bool now = confirmsCut(seam, confirmed_strength), before = confirmsCut(best, confirmed_strength);
+    if (now != before ? now : seam.strength > best.strength) best = seam;
   }
   return best;
 }
 
-/// The seam along a tile's cut edge k, read along `stretches` (see
-/// cutNeighbours): confirmed only where every one shows it. An edge with
-/// none, or with one along all of it, is read whole.
-SeamScore cutSeam(const RgbdFrame& frame, const PlaneFit& plane, const PlaneGrid& grid, const CellRect& rect, int k,
-                  const std::vector<std::pair<int, int>>& stretches, const std::array<Eigen::Vector3d, 4>& corners_m,
-                  const EdgeEvidenceParams& evidence_params, double confirmed_strength, bool& confirmed)
+/// A tile's cut as read: confirmed where every stretch read shows a seam;
+/// the faintest line along them (grey levels).
+struct CutReading
 {
-  const int along_limit = k % 2 == 0 ? grid.ny() : grid.nx();
-  const int along_from = std::max(0, k % 2 == 0 ? rect.j0 : rect.i0);
-  const int along_to = std::min(along_limit, k % 2 == 0 ? rect.j1 : rect.i1);
+  bool confirmed = true;
+  double line_contrast = std::numeric_limits<double>::infinity();
+};
+
+/// Reads the seam along a tile's cut edge k over `stretches` (see
+/// cutNeighbours), each in the edge's own direction; an edge with none, or
+/// with one along all of it, is read whole, corner to corner.
+CutReading readCut(const RgbdFrame& frame, const PlaneFit& plane, const PlaneGrid& grid, const CellRect& rect, int k,
+                   const std::vector<std::pair<int, int>>& stretches, const std::array<Eigen::Vector3d, 4>& corners_m,
+                   const EdgeEvidenceParams& evidence_params, double confirmed_strength)
+{
+  const bool constant_s = k % 2 == 0;
+  const int along_from = std::max(0, constant_s ? rect.j0 : rect.i0);
+  const int along_to = std::min(constant_s ? grid.ny() : grid.nx(), constant_s ? rect.j1 : rect.i1);
   const bool whole = stretches.empty() || (stretches.size() == 1 && stretches.front().first <= along_from &&
                                            stretches.front().second >= along_to);
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> reads_px;
   if (whole)
-  {
-    const Eigen::Vector2d a_px = frame.camera.project(corners_m[k]);
-    const Eigen::Vector2d b_px = frame.camera.project(corners_m[(k + 1) % 4]);
-    const SeamScore seam = tiltedSeam(frame, plane, a_px, b_px, evidence_params, confirmed_strength);
-    confirmed = seam.seen && seam.strength >= confirmed_strength;
-    return seam;
-  }
+    reads_px.emplace_back(frame.camera.project(corners_m[k]), frame.camera.project(corners_m[(k + 1) % 4]));
   const int line = rect.edgeLine(k);
   auto pixelAt = [&](int along) {
-    return frame.camera.project(k % 2 == 0 ? grid.point(line, along) : grid.point(along, line));
+    return frame.camera.project(constant_s ? grid.point(line, along) : grid.point(along, line));
   };
-  SeamScore weakest;
-  confirmed = true;
-  for (std::size_t n = 0; n < stretches.size(); ++n)
+  // Edges 0 and 3 run toward lower indices.
+  const bool descending = k == 0 || k == 3;
+  if (!whole)
+    for (const auto& [first, last] : stretches)
+      reads_px.emplace_back(pixelAt(descending ? last : first), pixelAt(descending ? first : last));
+  CutReading reading;
+  for (const auto& [a_px, b_px] : reads_px)
   {
-    // In the edge's own direction (edges 0 and 3 run toward lower indices).
-    const bool descending = k == 0 || k == 3;
-    const int start = descending ? stretches[n].second : stretches[n].first;
-    const int end = descending ? stretches[n].first : stretches[n].second;
-    const SeamScore seam = tiltedSeam(frame, plane, pixelAt(start), pixelAt(end), evidence_params, confirmed_strength);
-    confirmed = confirmed && seam.seen && seam.strength >= confirmed_strength;
-    const bool grooved = (n == 0 || weakest.groove_seen) && seam.groove_seen;
-    const double line_contrast = n == 0 ? seam.line_contrast : std::min(weakest.line_contrast, seam.line_contrast);
-    if (n == 0 || seam.strength < weakest.strength) weakest = seam;
-    weakest.groove_seen = grooved;
-    weakest.line_contrast = line_contrast;
+    const SeamScore seam = tiltedSeam(frame, plane, a_px, b_px, evidence_params, confirmed_strength);
+    reading.confirmed = reading.confirmed && confirmsCut(seam, confirmed_strength);
+    reading.line_contrast = std::min(reading.line_contrast, seam.line_contrast);
   }
-  return weakest;
+  return reading;
 }
 
 /// The direction the tiling's rectangles run along: the quad's, unless the
@@ -1296,12 +1301,11 @@ FaceTiling describeTiling(const RgbdFrame& frame, const Segment& segment, const 
       // nominal cut, is not trusted either: the seam must pass the edge
       // test along the cut, whose standard error comes from the scatter
       // along the line, and only where a neighbour lies beyond the cut.
-      bool confirmed = false;
-      const SeamScore seam = cutSeam(frame, measured.plane, grid, r, k, cutNeighbours(grid, r, k), face.corners_m,
-                                     evidence_params, kConfirmedSeamFactor * params.min_seam_strength, confirmed);
-      face.seam_seen[k] = confirmed;
-      groove[k] = groove[k] && confirmed;
-      tiling.weakest_cut_line = std::min(tiling.weakest_cut_line, seam.line_contrast);
+      const CutReading cut = readCut(frame, measured.plane, grid, r, k, cutNeighbours(grid, r, k), face.corners_m,
+                                     evidence_params, kConfirmedSeamFactor * params.min_seam_strength);
+      face.seam_seen[k] = cut.confirmed;
+      groove[k] = groove[k] && cut.confirmed;
+      tiling.weakest_cut_line = std::min(tiling.weakest_cut_line, cut.line_contrast);
     }
     for (int k = 0; k < 4; ++k)
     {
