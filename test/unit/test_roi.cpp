@@ -9,12 +9,14 @@
 #include <opencv2/imgproc.hpp>
 
 #include "brick_pose/catalogue/brick_catalogue.h"
+#include "brick_pose/roi/inset_fill.h"
 #include "brick_pose/roi/least_area_quad.h"
 #include "brick_pose/roi/oriented_bounding_box.h"
 #include "brick_pose/geometry/plane_fit.h"
 #include "brick_pose/roi/plate_splitter.h"
 #include "brick_pose/roi/roi_filter.h"
 #include "brick_pose/segmentation/hsv_segmenter.h"
+#include "brick_pose/segmentation/segment.h"
 #include "synthetic_plate_scene.h"
 
 namespace brick_pose
@@ -257,6 +259,67 @@ TEST(LeastAreaQuad, RaggedEdgesGiveTheEdgesNotTheirMean)
   }
 }
 
+/// The mask less a ragged rim: from one outline pixel in `one_in`, a disc
+/// of 1-2 px radius is cleared (a depth edge a matching window left jagged).
+cv::Mat withRaggedRim(const cv::Mat& mask, int one_in, unsigned seed)
+{
+  std::mt19937 generator(seed);
+  std::uniform_int_distribution<int> start(0, one_in - 1);
+  std::uniform_int_distribution<int> radius_px(1, 2);
+  cv::Mat ragged = mask.clone();
+  for (const cv::Point& p : largestOutline(mask))
+    if (start(generator) == 0) cv::circle(ragged, p, radius_px(generator), cv::Scalar(0), cv::FILLED);
+  return ragged;
+}
+
+/// Outline area over the quad's area, as RoiFilter measures a segment's fill.
+double outlineFill(const cv::Mat& mask, const QuadCorners& quad)
+{
+  double area_px = 0.0;
+  for (const auto& outline : allOutlines(mask)) area_px += std::abs(cv::contourArea(outline));
+  return area_px / std::abs(signedAreaPx(quad));
+}
+
+TEST(InsetFill, TheInsetQuadIsTheQuadWithEachSideMovedIn)
+{
+  for (const double angle : {0.0, 0.3, 1.1})
+  {
+    QuadCorners quad = rotatedRectangle({100.0, 80.0}, 60.0, 20.0, angle);
+    const QuadCorners truth = rotatedRectangle({100.0, 80.0}, 56.0, 16.0, angle);
+    for (const bool reversed : {false, true})
+    {
+      if (reversed) std::reverse(quad.begin(), quad.end());
+      const std::optional<QuadCorners> inset = insetQuad(quad, 2.0);
+      ASSERT_TRUE(inset);
+      EXPECT_LT(worstCornerErrorPx(*inset, truth), 1e-9) << "angle " << angle << (reversed ? ", reversed" : "");
+    }
+  }
+  // A strip 3 px wide has nothing 2 px inside both long sides.
+  EXPECT_FALSE(insetQuad(rotatedRectangle({50.0, 50.0}, 40.0, 3.0, 0.2), 2.0));
+}
+
+TEST(InsetFill, ARaggedRimIsLeftOutAMissingPieceIsNot)
+{
+  // A thin face, 64 x 19 px (a real box top at a metre), whose depth edge
+  // is jagged 1-2 px deep all round: its outline fills under 0.85 of the
+  // quad, but 0.9 of the quad 2 px inside (a few discs reach just that
+  // far). A corner missing (the same fill) is missing there too.
+  const double angle = 0.25;
+  const Eigen::Vector2d centre(80.0, 60.0);
+  const QuadCorners quad = rotatedRectangle(centre, 64.0, 19.0, angle);
+  const cv::Mat whole = rasterise(quad, {160, 120});
+  const cv::Mat ragged = withRaggedRim(whole, 2, 5);
+  EXPECT_LT(outlineFill(ragged, quad), 0.85);
+  EXPECT_GT(insetFillRatio(allOutlines(ragged), quad, 2.0), 0.9);
+
+  const Eigen::Vector2d along(std::cos(angle), std::sin(angle)), across(-std::sin(angle), std::cos(angle));
+  const std::vector<Eigen::Vector2d> corner = {quad[0] - 22.0 * along - 12.0 * across, quad[0] + 5.0 * along - 12.0 * across,
+                                               quad[0] + 5.0 * along + 5.0 * across, quad[0] - 22.0 * along + 5.0 * across};
+  const cv::Mat notched = rasterise(quad, {160, 120}, corner);
+  EXPECT_LT(outlineFill(notched, quad), 0.85);
+  EXPECT_LT(insetFillRatio(allOutlines(notched), quad, 2.0), 0.85);
+}
+
 TEST(RoiFilter, FaceCentreOfALongFaceMovesLittleWithOneBadCorner)
 {
   // An orange plate, 1.8 x 0.2 m, on a tilted plane. One corner measured
@@ -446,6 +509,68 @@ TEST(RoiFilter, UpDirectionRejectsSideFaces)
   EXPECT_NE(std::get<std::string>(result).find("not a top face"), std::string::npos) << std::get<std::string>(result);
   params.up_direction = scene.rotation.col(2);  // the plate's own normal: a top face
   EXPECT_TRUE(std::holds_alternative<BrickCandidate>(filterScene(scene, frame, params)));
+}
+
+/// A plate of `scene` as a colour-free segment: its depth pixels in `mask`.
+RoiResult filterColourFree(const test::PlateScene& scene, const RgbdFrame& frame, const cv::Mat& mask,
+                           const RoiFilterParams& params)
+{
+  const Segment segment =
+      segmentFromMask(mask, cv::Rect(0, 0, frame.width_px(), frame.height_px()), frame.depth_m, "");
+  CloudProcessorParams cloud;
+  cloud.outlier_removal_enabled = false;
+  return RoiFilter(BrickCatalogue::mbzirc2020(), params, cloud).filter(frame, segment);
+}
+
+TEST(RoiFilter, AColourFreeFaceWithARaggedDepthEdgeIsStillWhole)
+{
+  // A red plate (0.3 x 0.2 m) 2.6 m away through a wide lens (300 px
+  // focal length): 35 x 23 px, as small as a box top in mOSD.
+  test::PlateScene scene;
+  scene.camera = test::PlateScene::vgaCamera(300.0);
+  scene.centre_m = Eigen::Vector3d(0.1, 0.05, 2.6);
+  scene.rotation = test::PlateScene::facingCamera(0.2);
+  scene.length_m = 0.3;
+  scene.background_offset_m = 0.3;
+  const RgbdFrame frame = scene.frame();
+  cv::Mat plate = cv::Mat::zeros(frame.height_px(), frame.width_px(), CV_8UC1);
+  for (int v = 0; v < frame.height_px(); ++v)
+    for (int u = 0; u < frame.width_px(); ++u)
+      if (frame.depthAt(u, v) < scene.centre_m.z() + 0.15) plate.at<std::uint8_t>(v, u) = 255;
+  RoiFilterParams params = centreSampledRoi();
+  params.up_direction = scene.rotation.col(2);
+  // The jagged rim has no depth (what a matcher leaves there is dropped as
+  // invalid, or lies off the plane).
+  const cv::Mat rim_kept = withRaggedRim(plate, 2, 7);
+  RgbdFrame jagged = frame;
+  jagged.depth_m = frame.depth_m.clone();
+  jagged.depth_m.setTo(std::numeric_limits<float>::quiet_NaN(), plate & ~rim_kept);
+
+  const RoiResult ragged = filterColourFree(scene, jagged, rim_kept, params);
+  ASSERT_TRUE(std::holds_alternative<BrickCandidate>(ragged)) << std::get<std::string>(ragged);
+  const BrickCandidate& candidate = std::get<BrickCandidate>(ragged);
+  EXPECT_LT(candidate.fill_ratio, params.min_fill_ratio) << "the rim must cost more than the plain fill allows";
+  EXPECT_EQ(candidate.type_name, "red");
+  EXPECT_TRUE(candidate.complete) << candidate.partial_reason;
+  // Without the rim allowance the same segment is refused for its fill.
+  RoiFilterParams strict = params;
+  strict.ragged_outline_px = 0.0;
+  const RoiResult refused = filterColourFree(scene, jagged, rim_kept, strict);
+  ASSERT_TRUE(std::holds_alternative<std::string>(refused));
+  EXPECT_NE(std::get<std::string>(refused).find("segment fills"), std::string::npos) << std::get<std::string>(refused);
+
+  // A quarter of the plate missing at one end of a long side is no rim.
+  scene.has_notch = true;
+  scene.notch_min_m = Eigen::Vector2d(0.0, 0.0);
+  scene.notch_max_m = Eigen::Vector2d(0.16, 0.11);
+  const RgbdFrame notched_frame = scene.frame();
+  cv::Mat notched = cv::Mat::zeros(frame.height_px(), frame.width_px(), CV_8UC1);
+  for (int v = 0; v < frame.height_px(); ++v)
+    for (int u = 0; u < frame.width_px(); ++u)
+      if (notched_frame.depthAt(u, v) < scene.centre_m.z() + 0.15) notched.at<std::uint8_t>(v, u) = 255;
+  const RoiResult notch = filterColourFree(scene, notched_frame, notched, params);
+  ASSERT_TRUE(std::holds_alternative<std::string>(notch));
+  EXPECT_NE(std::get<std::string>(notch).find("segment fills"), std::string::npos) << std::get<std::string>(notch);
 }
 }  // namespace
 }  // namespace brick_pose

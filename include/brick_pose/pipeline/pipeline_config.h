@@ -81,7 +81,8 @@ BrickCatalogue catalogueFrom(const ParamLookup& lookup);
 
 /// `mode` (hsv | region_growing | colour_free), `min_area_px`, `crop_min_depth_m`,
 /// `crop_max_depth_m`, `outlier_removal`, `voxel_leaf_m` (0 disables),
-/// `mls`, `mls_search_radius_m`, `dimension_tolerance_m`, `max_plane_rms_m`, `front_end_threads`;
+/// `mls`, `mls_search_radius_m`, `dimension_tolerance_m`, `max_plane_rms_m`, `ragged_outline_px`,
+/// `front_end_threads`;
 /// the top-face check: `max_tilt_deg`, `edge_min_step_m`, `edge_min_groove_m`,
 /// `edge_min_line_contrast`, `edge_seam_noise_factor`, `edge_max_overrun_m`, `tiling_min_seam_strength`,
 /// `side_height_tolerance_m`, `side_height_tolerance_fraction`,

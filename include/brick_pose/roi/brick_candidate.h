@@ -65,6 +65,10 @@ struct BrickCandidate
   /// Area inside the segment's outline over the quad's area (1 for a whole,
   /// unoccluded face; lower for notched or irregular segments).
   double fill_ratio = 0.0;
+  /// The same measured RoiFilterParams::ragged_outline_px inside the quad's
+  /// sides (a ragged depth boundary left out); measured only where
+  /// fill_ratio falls short, else equal to it.
+  double inset_fill_ratio = 0.0;
   /// What lies beyond edge k (corner k to k+1): a real edge of the brick
   /// (step down, crease, seam) or not (occlusion boundary, image border, a
   /// plane that continues, no depth).

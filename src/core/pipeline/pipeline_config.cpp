@@ -87,6 +87,7 @@ ParamBindings frontEndBindings(FrontEndParams& params)
           {"mls_search_radius_m", &cloud.mls_search_radius_m},
           {"dimension_tolerance_m", &roi.dimensions.tolerance_m},
           {"max_plane_rms_m", &roi.max_plane_rms_m},
+          {"ragged_outline_px", &roi.ragged_outline_px},
           // The top-face check and the splitting of touching bricks (issue 10).
           {"max_tilt_deg", &roi.max_tilt_deg},
           {"edge_min_step_m", &roi.edges.min_step_m},

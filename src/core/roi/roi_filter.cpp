@@ -15,6 +15,7 @@
 #include "brick_pose/common/rounding.h"
 #include "brick_pose/frame/organized_cloud.h"
 #include "brick_pose/roi/colour_uniformity.h"
+#include "brick_pose/roi/inset_fill.h"
 #include "brick_pose/roi/raised_layer.h"
 #include "brick_pose/roi/plate_splitter.h"
 #include "brick_pose/roi/type_evidence.h"
@@ -45,6 +46,13 @@ std::string describe(const std::string& what, double value, const std::string& r
   text.precision(3);
   text << what << " " << value << " " << rule << " " << limit;
   return text.str();
+}
+
+/// Whether a colour-free segment is a rectangle's worth of its quad: it
+/// fills min_fill_ratio of it, or of the quad inside a ragged rim.
+bool fillsItsQuad(const BrickCandidate& candidate, const RoiFilterParams& params)
+{
+  return std::max(candidate.fill_ratio, candidate.inset_fill_ratio) >= params.min_fill_ratio;
 }
 
 /// Why one part of a split segment (a tile, a side-by-side cut, a part
@@ -404,6 +412,7 @@ void RoiFilterParams::validate() const
           "dimensions.min_visible_fraction", "must be in (0, 1]");
   check.require(classification_tolerance_m >= 0.0, "classification_tolerance_m", "must be >= 0");
   check.require(min_fill_ratio >= 0.0 && min_fill_ratio <= 1.0, "min_fill_ratio", "must be in [0, 1]");
+  check.require(ragged_outline_px >= 0.0, "ragged_outline_px", "must be >= 0");
   check.require(std::isfinite(up_direction.norm()), "up_direction", "must be finite");
   check.require(max_tilt_deg > 0.0 && max_tilt_deg <= 90.0, "max_tilt_deg", "must be in (0, 90]");
   check.require(quad.side_band_px > 0.0, "quad.side_band_px", "must be > 0");
@@ -809,6 +818,9 @@ std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const S
   double outline_area_px = 0.0;
   for (const auto& outline : outlines) outline_area_px += std::abs(cv::contourArea(outline));
   candidate.fill_ratio = outline_area_px / std::max(1e-9, std::abs(signedAreaPx(*quad)));
+  candidate.inset_fill_ratio = candidate.fill_ratio < params_.min_fill_ratio
+                                   ? insetFillRatio(outlines, *quad, params_.ragged_outline_px)
+                                   : candidate.fill_ratio;
   const int start = longEdgeStart(*quad, corners_m);
   candidate.corners_px = rotated(*quad, start);
   candidate.corners_m = rotated(corners_m, start);
@@ -852,8 +864,10 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
   // Colour-free: only whole faces can be told apart by size (half a blue
   // brick looks like a green one).
   if (anyTruncated(candidate)) return "face is cut by an occluder or the image border (" + truncation(candidate) + ")";
-  if (candidate.fill_ratio < params_.min_fill_ratio)
-    return describe("segment fills", candidate.fill_ratio, "of its quad, less than", params_.min_fill_ratio);
+  if (!fillsItsQuad(candidate, params_))
+    return describe("segment fills", candidate.fill_ratio, "of its quad, less than", params_.min_fill_ratio) +
+           describe(" (and", candidate.inset_fill_ratio, "of it", params_.ragged_outline_px) +
+           " px inside its sides, where a ragged depth edge no longer reaches)";
   if (thickness_m > tolerance.max_thickness_m)
     return describe("thickness", thickness_m, "m exceeds", tolerance.max_thickness_m);
   return typeBySize(frame, context, candidate);
