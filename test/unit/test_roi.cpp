@@ -301,23 +301,32 @@ TEST(InsetFill, TheInsetQuadIsTheQuadWithEachSideMovedIn)
 TEST(InsetFill, ARaggedRimIsLeftOutAMissingPieceIsNot)
 {
   // A thin face, 64 x 19 px (a real box top at a metre), whose depth edge
-  // is jagged 1-2 px deep all round: its outline fills under 0.85 of the
-  // quad, but 0.9 of the quad 2 px inside (a few discs reach just that
-  // far). A corner missing (the same fill) is missing there too.
+  // is jagged 1-2 px deep all round, as much as on the real box tops of
+  // mOSD: its outline fills under 0.85 of its fitted quad, the quad 2 px
+  // inside all but a few specks. A corner missing (the same fill) leaves a
+  // tenth of the inside open, though the least-area quad cuts part of it off.
   const double angle = 0.25;
   const Eigen::Vector2d centre(80.0, 60.0);
   const QuadCorners quad = rotatedRectangle(centre, 64.0, 19.0, angle);
-  const cv::Mat whole = rasterise(quad, {160, 120});
-  const cv::Mat ragged = withRaggedRim(whole, 2, 5);
-  EXPECT_LT(outlineFill(ragged, quad), 0.85);
-  EXPECT_GT(insetFillRatio(allOutlines(ragged), quad, 2.0), 0.9);
+  const cv::Mat ragged = withRaggedRim(rasterise(quad, {160, 120}), 4, 6);
+  // The quad RoiFilter fits to the outline.
+  const std::optional<QuadCorners> fitted = fitLeastAreaQuad(allOutlines(ragged), centreSampled());
+  ASSERT_TRUE(fitted);
+  const double fill = outlineFill(ragged, *fitted);
+  EXPECT_LT(fill, 0.85);
+  EXPECT_TRUE(shortfallFitsARim(fill * std::abs(signedAreaPx(*fitted)), *fitted, 2.0));
+  EXPECT_GT(insetFillRatio(allOutlines(ragged), *fitted, 2.0), 0.95);
 
   const Eigen::Vector2d along(std::cos(angle), std::sin(angle)), across(-std::sin(angle), std::cos(angle));
   const std::vector<Eigen::Vector2d> corner = {quad[0] - 22.0 * along - 12.0 * across, quad[0] + 5.0 * along - 12.0 * across,
                                                quad[0] + 5.0 * along + 5.0 * across, quad[0] - 22.0 * along + 5.0 * across};
   const cv::Mat notched = rasterise(quad, {160, 120}, corner);
-  EXPECT_LT(outlineFill(notched, quad), 0.85);
-  EXPECT_LT(insetFillRatio(allOutlines(notched), quad, 2.0), 0.85);
+  const std::optional<QuadCorners> notched_quad = fitLeastAreaQuad(allOutlines(notched), centreSampled());
+  ASSERT_TRUE(notched_quad);
+  EXPECT_LT(outlineFill(notched, *notched_quad), 0.85);
+  EXPECT_LT(insetFillRatio(allOutlines(notched), *notched_quad, 2.0), 0.92);
+  // Half of it missing: more than a 2 px rim along its sides holds.
+  EXPECT_FALSE(shortfallFitsARim(0.5 * std::abs(signedAreaPx(quad)), quad, 2.0));
 }
 
 TEST(RoiFilter, FaceCentreOfALongFaceMovesLittleWithOneBadCorner)

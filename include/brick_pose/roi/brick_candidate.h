@@ -67,7 +67,8 @@ struct BrickCandidate
   double fill_ratio = 0.0;
   /// The same measured RoiFilterParams::ragged_outline_px inside the quad's
   /// sides (a ragged depth boundary left out); measured only where
-  /// fill_ratio falls short, else equal to it.
+  /// fill_ratio falls short by no more than such a rim holds, else equal
+  /// to fill_ratio.
   double inset_fill_ratio = 0.0;
   /// What lies beyond edge k (corner k to k+1): a real edge of the brick
   /// (step down, crease, seam) or not (occlusion boundary, image border, a

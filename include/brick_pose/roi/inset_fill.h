@@ -23,6 +23,13 @@ namespace brick_pose
 /// would pass its opposite) or not convex.
 std::optional<QuadCorners> insetQuad(const QuadCorners& quad, double inset_px);
 
+/// Whether all of the quad's area outside the outlines (which enclose
+/// `outline_area_px`) could lie in a rim `rim_px` deep along its sides: no
+/// more than rim_px times the quad's perimeter. Where it could not, no rim
+/// explains the shortfall (and a quad far larger than its outline is never
+/// rasterised).
+bool shortfallFitsARim(double outline_area_px, const QuadCorners& quad, double rim_px);
+
 /// Share of the pixels inside insetQuad(quad, inset_px) that lie inside the
 /// outlines (closed, image pixels; what they enclose counts, holes too).
 /// 0 when there is no inset quad.

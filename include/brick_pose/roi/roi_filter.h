@@ -45,7 +45,8 @@ struct RoiFilterParams
   /// Colour-free segments must also fill their quad this well: pieces of
   /// the ground or of merged faces are not rectangles.
   double min_fill_ratio = 0.85;
-  /// ... or fill that well of the quad this far inside its sides: how deep
+  /// ... or fall short by no more than a rim this deep along the quad's
+  /// sides holds, and fill the quad inside the rim but for specks: how deep
   /// a sensor's ragged depth boundary may eat into a face (see inset_fill.h).
   double ragged_outline_px = 2.0;
   /// "Up" (unit, camera frame, e.g. from tf through the nodelet's

@@ -57,6 +57,13 @@ std::optional<QuadCorners> insetQuad(const QuadCorners& quad, double inset_px)
   return inset;
 }
 
+bool shortfallFitsARim(double outline_area_px, const QuadCorners& quad, double rim_px)
+{
+  double perimeter_px = 0.0;
+  for (int k = 0; k < 4; ++k) perimeter_px += (quad[(k + 1) % 4] - quad[k]).norm();
+  return std::abs(signedAreaPx(quad)) - outline_area_px <= rim_px * perimeter_px;
+}
+
 double insetFillRatio(const std::vector<std::vector<cv::Point>>& outlines, const QuadCorners& quad, double inset_px)
 {
   const std::optional<QuadCorners> inner = insetQuad(quad, inset_px);
