@@ -520,6 +520,16 @@ TEST(RoiFilter, UpDirectionRejectsSideFaces)
   EXPECT_TRUE(std::holds_alternative<BrickCandidate>(filterScene(scene, frame, params)));
 }
 
+/// The pixels whose depth is nearer than `z_m` (the plate, before its background).
+cv::Mat nearerThan(const RgbdFrame& frame, double z_m)
+{
+  cv::Mat mask = cv::Mat::zeros(frame.height_px(), frame.width_px(), CV_8UC1);
+  for (int v = 0; v < frame.height_px(); ++v)
+    for (int u = 0; u < frame.width_px(); ++u)
+      if (frame.depthAt(u, v) < z_m) mask.at<std::uint8_t>(v, u) = 255;
+  return mask;
+}
+
 /// A plate of `scene` as a colour-free segment: its depth pixels in `mask`.
 RoiResult filterColourFree(const test::PlateScene& scene, const RgbdFrame& frame, const cv::Mat& mask,
                            const RoiFilterParams& params)
@@ -542,10 +552,7 @@ TEST(RoiFilter, AColourFreeFaceWithARaggedDepthEdgeIsStillWhole)
   scene.length_m = 0.3;
   scene.background_offset_m = 0.3;
   const RgbdFrame frame = scene.frame();
-  cv::Mat plate = cv::Mat::zeros(frame.height_px(), frame.width_px(), CV_8UC1);
-  for (int v = 0; v < frame.height_px(); ++v)
-    for (int u = 0; u < frame.width_px(); ++u)
-      if (frame.depthAt(u, v) < scene.centre_m.z() + 0.15) plate.at<std::uint8_t>(v, u) = 255;
+  const cv::Mat plate = nearerThan(frame, scene.centre_m.z() + 0.15);
   RoiFilterParams params = centreSampledRoi();
   params.up_direction = scene.rotation.col(2);
   // The jagged rim has no depth (what a matcher leaves there is dropped as
@@ -573,13 +580,33 @@ TEST(RoiFilter, AColourFreeFaceWithARaggedDepthEdgeIsStillWhole)
   scene.notch_min_m = Eigen::Vector2d(0.0, 0.0);
   scene.notch_max_m = Eigen::Vector2d(0.16, 0.11);
   const RgbdFrame notched_frame = scene.frame();
-  cv::Mat notched = cv::Mat::zeros(frame.height_px(), frame.width_px(), CV_8UC1);
-  for (int v = 0; v < frame.height_px(); ++v)
-    for (int u = 0; u < frame.width_px(); ++u)
-      if (notched_frame.depthAt(u, v) < scene.centre_m.z() + 0.15) notched.at<std::uint8_t>(v, u) = 255;
+  const cv::Mat notched = nearerThan(notched_frame, scene.centre_m.z() + 0.15);
   const RoiResult notch = filterColourFree(scene, notched_frame, notched, params);
   ASSERT_TRUE(std::holds_alternative<std::string>(notch));
   EXPECT_NE(std::get<std::string>(notch).find("segment fills"), std::string::npos) << std::get<std::string>(notch);
+}
+
+TEST(RoiFilter, ARimMissingMoreThanARimHoldsNeverLowersMinFillRatio)
+{
+  // A green (0.6 x 0.2 m, 450 x 150 px) with a corner missing, 4 % of it:
+  // more than a 2 px rim along its sides holds, so the rim rule says nothing
+  // and a min_fill_ratio above the face's fill refuses it.
+  test::PlateScene scene;
+  scene.camera = test::PlateScene::vgaCamera();
+  scene.centre_m = Eigen::Vector3d(0.0, 0.0, 0.8);
+  scene.rotation = test::PlateScene::facingCamera(0.1);
+  scene.has_notch = true;
+  scene.notch_min_m = Eigen::Vector2d(0.26, 0.0);
+  scene.notch_max_m = Eigen::Vector2d(0.31, 0.095);
+  const RgbdFrame frame = scene.frame();
+  const cv::Mat plate = nearerThan(frame, scene.centre_m.z() + 0.15);
+  RoiFilterParams params = centreSampledRoi();
+  params.up_direction = scene.rotation.col(2);
+  params.min_fill_ratio = 0.99;
+  const RoiResult result = filterColourFree(scene, frame, plate, params);
+  ASSERT_TRUE(std::holds_alternative<std::string>(result)) << "fill " << std::get<BrickCandidate>(result).fill_ratio;
+  EXPECT_NE(std::get<std::string>(result).find("more short than a ragged rim"), std::string::npos)
+      << std::get<std::string>(result);
 }
 }  // namespace
 }  // namespace brick_pose

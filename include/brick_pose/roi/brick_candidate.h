@@ -3,6 +3,7 @@
 // one visible brick top face, in the camera optical frame.
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -67,9 +68,8 @@ struct BrickCandidate
   double fill_ratio = 0.0;
   /// The same measured RoiFilterParams::ragged_outline_px inside the quad's
   /// sides (a ragged depth boundary left out); measured only where
-  /// fill_ratio falls short by no more than such a rim holds, else equal
-  /// to fill_ratio.
-  double inset_fill_ratio = 0.0;
+  /// fill_ratio falls short by no more than such a rim holds, else NaN.
+  double inset_fill_ratio = std::numeric_limits<double>::quiet_NaN();
   /// What lies beyond edge k (corner k to k+1): a real edge of the brick
   /// (step down, crease, seam) or not (occlusion boundary, image border, a
   /// plane that continues, no depth).

@@ -20,7 +20,8 @@ namespace brick_pose
 {
 /// The quad moved `inset_px` inward along each side's normal (corners where
 /// the moved sides meet); empty when the quad is too small for it (a side
-/// would pass its opposite) or not convex.
+/// would pass its opposite, or the quad turn over) or has a side of no
+/// length or two sides parallel where they meet.
 std::optional<QuadCorners> insetQuad(const QuadCorners& quad, double inset_px);
 
 /// Whether all of the quad's area outside the outlines (which enclose

@@ -58,6 +58,7 @@ std::string describe(const std::string& what, double value, const std::string& r
 constexpr double kMinFillInsideRim = 0.95;
 bool fillsItsQuad(const BrickCandidate& candidate, const RoiFilterParams& params)
 {
+  // NaN (not measured) fails the second test.
   return candidate.fill_ratio >= params.min_fill_ratio || candidate.inset_fill_ratio >= kMinFillInsideRim;
 }
 
@@ -826,8 +827,8 @@ std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const S
   candidate.fill_ratio = outline_area_px / std::max(1e-9, std::abs(signedAreaPx(*quad)));
   const bool rim_may_explain = candidate.fill_ratio < params_.min_fill_ratio &&
                                shortfallFitsARim(outline_area_px, *quad, params_.ragged_outline_px);
-  candidate.inset_fill_ratio =
-      rim_may_explain ? insetFillRatio(outlines, *quad, params_.ragged_outline_px) : candidate.fill_ratio;
+  candidate.inset_fill_ratio = rim_may_explain ? insetFillRatio(outlines, *quad, params_.ragged_outline_px)
+                                               : std::numeric_limits<double>::quiet_NaN();
   const int start = longEdgeStart(*quad, corners_m);
   candidate.corners_px = rotated(*quad, start);
   candidate.corners_m = rotated(corners_m, start);
@@ -875,9 +876,12 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
   {
     std::ostringstream text;
     text.precision(3);
-    text << "segment fills " << candidate.fill_ratio << " of its quad, less than " << params_.min_fill_ratio
-         << ", and " << candidate.inset_fill_ratio << " of it inside a ragged rim of " << params_.ragged_outline_px
-         << " px, less than " << kMinFillInsideRim;
+    text << "segment fills " << candidate.fill_ratio << " of its quad, less than " << params_.min_fill_ratio;
+    if (std::isnan(candidate.inset_fill_ratio))
+      text << ", more short than a ragged rim of " << params_.ragged_outline_px << " px holds";
+    else
+      text << ", and " << candidate.inset_fill_ratio << " of it inside a ragged rim of " << params_.ragged_outline_px
+           << " px, less than " << kMinFillInsideRim;
     return text.str();
   }
   if (thickness_m > tolerance.max_thickness_m)
