@@ -1,6 +1,7 @@
 // Touching bricks merged into one planar segment, cut apart by tiling the
 // segment with catalogue sizes along the seams the image shows.
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include "brick_pose/pipeline/front_end.h"
 #include "brick_pose/roi/cell_counts.h"
 #include "brick_pose/roi/face_tiling.h"
+#include "brick_pose/roi/plane_pixel_samples.h"
 #include "brick_pose/segmentation/hsv_segmenter.h"
 #include "synthetic_plate_scene.h"
 #include "touching_plates_scene.h"
@@ -712,6 +714,70 @@ TEST(FaceTiling, ParameterChecks)
   params = FaceTilingParams();
   params.cell_m = -1.0;
   EXPECT_THROW(params.validate(), ConfigError);
+}
+
+/// A VGA frame of noisy depth around 1.2 m, with holes, and random colour.
+RgbdFrame noisyFrame()
+{
+  RgbdFrame frame;
+  frame.camera = test::PlateScene::vgaCamera();
+  frame.rgb.create(480, 640, CV_8UC3);
+  frame.depth_m.create(480, 640, CV_32FC1);
+  cv::RNG rng(7);
+  rng.fill(frame.rgb, cv::RNG::UNIFORM, 0, 256);
+  rng.fill(frame.depth_m, cv::RNG::UNIFORM, 1.1, 1.3);
+  for (int k = 0; k < 3000; ++k)
+    frame.depth_m.at<float>(rng.uniform(0, 480), rng.uniform(0, 640)) = std::numeric_limits<float>::quiet_NaN();
+  return frame;
+}
+
+TEST(PlanePixelSamples, ReadsEveryPixelAsComputedAndStoresOnlyThoseNearTheOutline)
+{
+  const RgbdFrame frame = noisyFrame();
+  PlaneFit plane;
+  plane.centroid_m = Eigen::Vector3d(0.05, -0.02, 1.2);
+  plane.normal = Eigen::Vector3d(0.2, -0.3, -1.0).normalized();
+  plane.valid = true;
+  // A long face seen askew (its image box is three times its area), and
+  // one running off the image.
+  const std::vector<std::vector<Eigen::Vector2d>> outlines = {
+      {{100.0, 100.0}, {420.0, 340.0}, {390.5, 380.2}, {70.3, 140.0}},
+      {{-50.0, 200.0}, {300.0, 190.0}, {310.0, 520.0}, {-40.0, 530.0}},
+  };
+  const int margin_px = 4;
+  for (const auto& outline : outlines)
+  {
+    const PlanePixelSamples samples(frame, plane, outline, margin_px);
+    cv::Mat inside(480, 640, CV_8UC1, cv::Scalar(0));
+    std::vector<cv::Point> polygon;
+    for (const Eigen::Vector2d& p : outline) polygon.emplace_back(cvRound(p.x()), cvRound(p.y()));
+    cv::fillConvexPoly(inside, polygon, cv::Scalar(255));
+    const cv::Rect box = cv::boundingRect(polygon) & cv::Rect(0, 0, 640, 480);
+    const auto box_area = static_cast<std::size_t>(box.area());
+    for (int v = 0; v < 480; ++v)
+      for (int u = 0; u < 640; ++u)
+      {
+        double offset_m = 0.0, grey = 0.0;
+        samples.read(u, v, offset_m, grey);
+        const cv::Vec3b rgb = frame.rgb.at<cv::Vec3b>(v, u);
+        ASSERT_DOUBLE_EQ(grey, (rgb[0] + rgb[1] + rgb[2]) / 3.0) << u << " " << v;
+        const float z = frame.depthAt(u, v);
+        if (std::isnan(z))
+          ASSERT_TRUE(std::isnan(offset_m)) << u << " " << v;
+        else
+          ASSERT_DOUBLE_EQ(offset_m, plane.signedDistance(frame.camera.backProject(u, v, z))) << u << " " << v;
+        if (inside.at<std::uint8_t>(v, u)) ASSERT_TRUE(samples.stored(u, v)) << u << " " << v;
+      }
+    if (&outline != &outlines.front()) continue;
+    // Nothing stored far from the askew face: not a corner of its image
+    // box, and well under the box's area.
+    EXPECT_FALSE(samples.stored(box.x, box.y + box.height - 1));
+    EXPECT_LT(samples.storedCount(), box_area / 2);
+  }
+  // No outline: the whole image.
+  const PlanePixelSamples whole(frame, plane, {}, margin_px);
+  EXPECT_EQ(whole.storedCount(), 640u * 480u);
+  EXPECT_TRUE(whole.stored(0, 0) && whole.stored(639, 479));
 }
 
 TEST(CellCounts, CountsTheStateOverAnyRectangleAndNothingBeyondTheGrid)

@@ -1,10 +1,12 @@
 #include "brick_pose/roi/face_tiling.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <map>
+#include <memory>
 #include <set>
 #include <tuple>
 #include <utility>
@@ -17,6 +19,7 @@
 #include "brick_pose/common/rounding.h"
 #include "brick_pose/roi/cell_counts.h"
 #include "brick_pose/roi/outline_axis.h"
+#include "brick_pose/roi/plane_pixel_samples.h"
 
 namespace brick_pose
 {
@@ -138,62 +141,6 @@ struct LineEvidence
   static constexpr int kBackgroundOuter = 12;
 };
 
-/// Each pixel's signed distance from the face's plane and its grey level,
-/// over a box around the face: the line evidence reads most pixels several
-/// times (two directions, the window across each line and its arms), and
-/// pixels outside the box are computed where read.
-class PixelSamples
-{
-public:
-  PixelSamples() = default;
-  PixelSamples(const RgbdFrame& frame, const PlaneFit& plane, const cv::Rect& box) : box_(box)
-  {
-    offset_m_.resize(static_cast<std::size_t>(box_.area()));
-    grey_sum_.resize(offset_m_.size());
-    for (int v = box_.y; v < box_.y + box_.height; ++v)
-      for (int u = box_.x; u < box_.x + box_.width; ++u)
-      {
-        const std::size_t at = index(u, v);
-        computed(frame, plane, u, v, offset_m_[at], grey_sum_[at]);
-      }
-  }
-
-  /// The pixel (u, v), which must lie in the image. The grey level is the
-  /// mean of the three channels.
-  void read(const RgbdFrame& frame, const PlaneFit& plane, int u, int v, double& offset_m, double& grey) const
-  {
-    int grey_sum = 0;
-    if (box_.contains(cv::Point(u, v)))
-    {
-      const std::size_t at = index(u, v);
-      offset_m = offset_m_[at];
-      grey_sum = grey_sum_[at];
-    }
-    else
-      computed(frame, plane, u, v, offset_m, grey_sum);
-    grey = grey_sum / 3.0;
-  }
-
-private:
-  template <typename Sum>
-  static void computed(const RgbdFrame& frame, const PlaneFit& plane, int u, int v, double& offset_m, Sum& grey_sum)
-  {
-    const cv::Vec3b& rgb = frame.rgb.ptr<cv::Vec3b>(v)[u];
-    grey_sum = static_cast<Sum>(rgb[0] + rgb[1] + rgb[2]);
-    const float z = frame.depthAt(u, v);
-    offset_m = std::isnan(z) ? std::numeric_limits<double>::quiet_NaN()
-                             : plane.signedDistance(frame.camera.backProject(u, v, z));
-  }
-  std::size_t index(int u, int v) const
-  {
-    return static_cast<std::size_t>(v - box_.y) * box_.width + static_cast<std::size_t>(u - box_.x);
-  }
-
-  cv::Rect box_;
-  std::vector<double> offset_m_;
-  std::vector<std::uint16_t> grey_sum_;
-};
-
 /// The segment rasterised on its plane. One per face and thread: its const
 /// queries fill caches (pixels read, cells beyond the grid) on first use.
 /// The line evidence alone may be read on several threads: it reads the
@@ -270,7 +217,15 @@ public:
     const int a = i + beyond_reach_, b = j + beyond_reach_;
     const int cache_nx = nx_ + 2 * beyond_reach_;
     if (a < 0 || b < 0 || a >= cache_nx || b >= ny_ + 2 * beyond_reach_) return projectHidden(i, j);
-    std::int8_t& known = beyond_cache_[static_cast<std::size_t>(b) * cache_nx + a];
+    // The reach is a whole brick's length on every side, mostly never
+    // asked about: the cache is made block by block as it is read.
+    auto& block = beyond_blocks_[static_cast<std::size_t>(b / kBeyondBlock) * beyond_blocks_nx_ + a / kBeyondBlock];
+    if (!block)
+    {
+      block = std::make_unique<std::array<std::int8_t, kBeyondBlock * kBeyondBlock>>();
+      block->fill(-1);
+    }
+    std::int8_t& known = (*block)[static_cast<std::size_t>(b % kBeyondBlock) * kBeyondBlock + a % kBeyondBlock];
     if (known < 0) known = projectHidden(i, j) ? 1 : 0;
     return known == 1;
   }
@@ -280,18 +235,21 @@ public:
   void reserveBeyond(int reach_cells)
   {
     beyond_reach_ = std::max(0, reach_cells);
-    beyond_cache_.assign(static_cast<std::size_t>(nx_ + 2 * beyond_reach_) * (ny_ + 2 * beyond_reach_), -1);
+    beyond_blocks_nx_ = (nx_ + 2 * beyond_reach_ + kBeyondBlock - 1) / kBeyondBlock;
+    const int blocks_ny = (ny_ + 2 * beyond_reach_ + kBeyondBlock - 1) / kBeyondBlock;
+    beyond_blocks_.clear();
+    beyond_blocks_.resize(static_cast<std::size_t>(beyond_blocks_nx_) * blocks_ny);
   }
 
   /// Dips across lines of constant s (along_s = true: lines i = 0..nx,
   /// samples along t) or of constant t, read from `pixels`
   /// (pixelSamples(arm_px)).
-  LineEvidence lineEvidence(const PixelSamples& pixels, bool constant_s, int arm_px, double on_plane_m,
+  LineEvidence lineEvidence(const PlanePixelSamples& pixels, bool constant_s, int arm_px, double on_plane_m,
                             const std::array<double, 2>& sigma_floor) const;
 
   /// The pixels the line evidence with arms of `arm_px` reads: the grid's
   /// image and a margin around it, made on first use.
-  const PixelSamples& pixelSamples(int arm_px) const { return pixelSamplesWithin(arm_px + halfWindowPx() + 2); }
+  const PlanePixelSamples& pixelSamples(int arm_px) const { return pixelSamplesWithin(arm_px + halfWindowPx() + 2); }
 
 private:
   /// The lines lie a cell apart, possibly more than a pixel: the middle of a
@@ -300,33 +258,24 @@ private:
   int halfWindowPx() const { return std::max(0, static_cast<int>(std::ceil(0.5 * cell_px_ - 0.5))); }
 
   /// The grid's image and `margin_px` around it, made on first use.
-  const PixelSamples& pixelSamplesWithin(int margin_px) const
+  const PlanePixelSamples& pixelSamplesWithin(int margin_px) const
   {
     if (!pixel_samples_)
     {
-      // The image box of the grid's corners (a plane rectangle in front of
-      // the camera projects to a convex quadrilateral); corners behind it
-      // or beyond the image are clamped to the image.
-      const double width = frame_.width_px(), height = frame_.height_px();
-      double u_min = width, v_min = height, u_max = 0.0, v_max = 0.0;
-      for (const auto& [i, j] : {std::pair<double, double>{0.0, 0.0}, {1.0 * nx_, 0.0}, {0.0, 1.0 * ny_}, {1.0 * nx_, 1.0 * ny_}})
+      // A plane rectangle in front of the camera projects to a convex
+      // quadrilateral; with a corner behind it, the whole image is read.
+      std::vector<Eigen::Vector2d> outline_px;
+      for (const auto& [i, j] : {std::pair<double, double>{0.0, 0.0}, {1.0 * nx_, 0.0}, {1.0 * nx_, 1.0 * ny_}, {0.0, 1.0 * ny_}})
       {
         const Eigen::Vector3d corner_m = point(i, j);
-        const bool in_front = corner_m.z() > 0.05;
-        const Eigen::Vector2d p = in_front ? frame_.camera.project(corner_m) : Eigen::Vector2d::Zero();
-        const bool usable = in_front && std::isfinite(p.x()) && std::isfinite(p.y());
-        u_min = std::min(u_min, usable ? std::clamp(p.x(), 0.0, width) : 0.0);
-        v_min = std::min(v_min, usable ? std::clamp(p.y(), 0.0, height) : 0.0);
-        u_max = std::max(u_max, usable ? std::clamp(p.x(), 0.0, width) : width);
-        v_max = std::max(v_max, usable ? std::clamp(p.y(), 0.0, height) : height);
+        if (!(corner_m.z() > 0.05))
+        {
+          outline_px.clear();
+          break;
+        }
+        outline_px.push_back(frame_.camera.project(corner_m));
       }
-      const cv::Rect image(0, 0, frame_.width_px(), frame_.height_px());
-      const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(u_min)) - margin_px,
-                                              static_cast<int>(std::floor(v_min)) - margin_px),
-                                    cv::Point(static_cast<int>(std::ceil(u_max)) + margin_px + 1,
-                                              static_cast<int>(std::ceil(v_max)) + margin_px + 1)) &
-                           image;
-      pixel_samples_.emplace(frame_, plane_, box);
+      pixel_samples_.emplace(frame_, plane_, outline_px, margin_px);
     }
     return *pixel_samples_;
   }
@@ -360,12 +309,15 @@ private:
   double cell_px_ = 1.0;
   int nx_ = 1, ny_ = 1;
   std::vector<std::uint8_t> state_;
+  static constexpr int kBeyondBlock = 32;  ///< cells along a side of a block of the cache
   int beyond_reach_ = 0;
-  mutable std::vector<std::int8_t> beyond_cache_;  ///< -1 unknown, else hiddenBeyondGrid()
-  mutable std::optional<PixelSamples> pixel_samples_;
+  int beyond_blocks_nx_ = 0;
+  /// hiddenBeyondGrid()'s answers (-1 unknown), in blocks made on first use.
+  mutable std::vector<std::unique_ptr<std::array<std::int8_t, kBeyondBlock * kBeyondBlock>>> beyond_blocks_;
+  mutable std::optional<PlanePixelSamples> pixel_samples_;
 };
 
-LineEvidence PlaneGrid::lineEvidence(const PixelSamples& pixels, bool constant_s, int arm_px, double on_plane_m,
+LineEvidence PlaneGrid::lineEvidence(const PlanePixelSamples& pixels, bool constant_s, int arm_px, double on_plane_m,
                                      const std::array<double, 2>& sigma_floor) const
 {
   LineEvidence evidence;
@@ -379,7 +331,7 @@ LineEvidence PlaneGrid::lineEvidence(const PixelSamples& pixels, bool constant_s
   auto sample = [&](const Eigen::Vector2d& p, double& offset_m, double& grey) {
     const int u = roundToInt(p.x()), v = roundToInt(p.y());
     if (u < 0 || v < 0 || u >= width || v >= height) return false;
-    pixels.read(frame_, plane_, u, v, offset_m, grey);
+    pixels.read(u, v, offset_m, grey);
     return true;
   };
   // The pixel of each sample on a line, and on the next line, whose
@@ -482,7 +434,7 @@ public:
     const std::array<double, 2> floor{{evidence_params.min_groove_m, evidence_params.min_line_contrast}};
     // The two directions read the same pixels, made here, and nothing the
     // grid caches: each goes on its own thread.
-    const PixelSamples& pixels = grid.pixelSamples(params.seam_arm_px);
+    const PlanePixelSamples& pixels = grid.pixelSamples(params.seam_arm_px);
     Evidence evidence;
     parallelFor(2, params.worker_threads, [&](int direction) {
       (direction == 0 ? evidence.along_s : evidence.along_t) =
