@@ -37,11 +37,11 @@ std::string missReason(const FrontEndResult& result, const eval::SceneTruth& tru
       named_share = share;
     }
   }
-  if (!named) return "no segment";
+  const std::string reason = named ? named->reason : "no segment";
   if (verbose)
     std::fprintf(stderr, "%s: miss %s%s vis %.2f: %s\n", frame_name.c_str(), whole ? "whole " : "", top.type.c_str(),
-                 top.visible_fraction, named->reason.c_str());
-  return named->reason.substr(0, named->reason.find_first_of("0123456789"));
+                 top.visible_fraction, reason.c_str());
+  return reason.substr(0, reason.find_first_of("0123456789"));
 }
 
 /// Why a candidate is not one of the earlier benchmark's true positives
@@ -133,8 +133,16 @@ void recordFrame(const FrontEndResult& result, double cpu_ms, const eval::SceneT
       recordLegacyErrors(candidate, face, camera, stats);
   }
   for (const eval::TopMatch& top : match.tops)
+  {
     if (top.visible_fraction >= match_params.legacy_min_visible_fraction && !top.legacy_found)
       ++stats.miss_reasons[missReason(result, truth, top.face, top.whole_in_view, verbose, frame_name)];
+    // A whole top a candidate lies on without holding enough of it: the
+    // candidate's own line ("not a top found") says what it is.
+    else if (verbose && top.whole_in_view && !top.found)
+      std::fprintf(stderr, "%s: miss whole %s vis %.2f: a candidate lies on it but is not it (see its line)\n",
+                   frame_name.c_str(), truth.faces[static_cast<std::size_t>(top.face)].type.c_str(),
+                   top.visible_fraction);
+  }
 }
 }  // namespace frontend_bench
 }  // namespace brick_pose
