@@ -778,6 +778,12 @@ TEST(PlanePixelSamples, ReadsEveryPixelAsComputedAndStoresOnlyThoseNearTheOutlin
   const PlanePixelSamples whole(frame, plane, {}, margin_px);
   EXPECT_EQ(whole.storedCount(), 640u * 480u);
   EXPECT_TRUE(whole.stored(0, 0) && whole.stored(639, 479));
+  // A corner projected from just in front of the camera lies far off the
+  // image: the band of rows it crosses is stored across the image.
+  const PlanePixelSamples band(frame, plane, {{-1e12, 100.0}, {1e12, 100.0}, {1e12, 110.0}, {-1e12, 110.0}}, margin_px);
+  EXPECT_TRUE(band.stored(0, 105) && band.stored(639, 105));
+  EXPECT_FALSE(band.stored(320, 200));
+  EXPECT_EQ(band.storedCount(), 640u * (11u + 2u * margin_px));
 }
 
 TEST(CellCounts, CountsTheStateOverAnyRectangleAndNothingBeyondTheGrid)

@@ -44,6 +44,18 @@ bool extentWithin(const std::vector<Eigen::Vector2d>& polygon, double y_lo, doub
   return u_min <= u_max;
 }
 
+/// floor(value) + offset as an index in [lo, hi]: clamped before the cast,
+/// so a corner projected from near the camera plane cannot overflow it.
+int clampedFloor(double value, int offset, int lo, int hi)
+{
+  return static_cast<int>(std::clamp(std::floor(value) + offset, static_cast<double>(lo), static_cast<double>(hi)));
+}
+
+int clampedCeil(double value, int offset, int lo, int hi)
+{
+  return static_cast<int>(std::clamp(std::ceil(value) + offset, static_cast<double>(lo), static_cast<double>(hi)));
+}
+
 bool allFinite(const std::vector<Eigen::Vector2d>& points)
 {
   return std::all_of(points.begin(), points.end(), [](const Eigen::Vector2d& p) { return p.allFinite(); });
@@ -65,8 +77,8 @@ PlanePixelSamples::PlanePixelSamples(const RgbdFrame& frame, const PlaneFit& pla
       y_min = std::min(y_min, p.y());
       y_max = std::max(y_max, p.y());
     }
-    v_begin_ = std::clamp(static_cast<int>(std::floor(y_min)) - margin_px, 0, height);
-    v_end = std::clamp(static_cast<int>(std::ceil(y_max)) + margin_px + 1, v_begin_, height);
+    v_begin_ = clampedFloor(y_min, -margin_px, 0, height);
+    v_end = clampedCeil(y_max, margin_px + 1, v_begin_, height);
   }
   rows_.resize(static_cast<std::size_t>(v_end - v_begin_));
   std::size_t total = 0;
@@ -78,8 +90,8 @@ PlanePixelSamples::PlanePixelSamples(const RgbdFrame& frame, const PlaneFit& pla
       span.u_end = width;
     else if (double u_min, u_max; extentWithin(outline_px, v - margin_px - 0.5, v + margin_px + 0.5, u_min, u_max))
     {
-      span.u_begin = std::clamp(static_cast<int>(std::floor(u_min)) - margin_px, 0, width);
-      span.u_end = std::clamp(static_cast<int>(std::ceil(u_max)) + margin_px + 1, span.u_begin, width);
+      span.u_begin = clampedFloor(u_min, -margin_px, 0, width);
+      span.u_end = clampedCeil(u_max, margin_px + 1, span.u_begin, width);
     }
     total += static_cast<std::size_t>(span.u_end - span.u_begin);
   }
