@@ -1,5 +1,6 @@
 #include "bench_frontend/cell_stats.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -22,22 +23,31 @@ std::string missReason(const FrontEndResult& result, const eval::SceneTruth& tru
                        bool verbose, const std::string& frame_name)
 {
   const eval::FaceTruth& top = truth.faces[static_cast<std::size_t>(face)];
+  // How much of the top a box holds (sampled every other pixel), and
+  // whether that is a third of the top.
+  auto holds = [&](const cv::Rect& box, double& share) {
+    int inside = 0, samples = 0;
+    for (int v = box.y; v < box.br().y; v += 2)
+      for (int u = box.x; u < box.br().x; u += 2, ++samples)
+        if (truth.face_index.at<int>(v, u) == face) ++inside;
+    share = samples > 0 ? static_cast<double>(inside) / samples : 0.0;
+    return inside * 4 > top.visible_px / 3;
+  };
   const Rejection* named = nullptr;
   double named_share = 0.0;
   for (const Rejection& rejection : result.rejections)
-  {
-    int inside = 0, samples = 0;
-    for (int v = rejection.bounding_box_px.y; v < rejection.bounding_box_px.br().y; v += 2)
-      for (int u = rejection.bounding_box_px.x; u < rejection.bounding_box_px.br().x; u += 2, ++samples)
-        if (truth.face_index.at<int>(v, u) == face) ++inside;
-    const double share = samples > 0 ? static_cast<double>(inside) / samples : 0.0;
-    if (inside * 4 > top.visible_px / 3 && share > named_share)
+    if (double share = 0.0; holds(rejection.bounding_box_px, share) && share > named_share)
     {
       named = &rejection;
       named_share = share;
     }
-  }
-  const std::string reason = named ? named->reason : "no segment";
+  const bool under_a_candidate = std::any_of(result.candidates.begin(), result.candidates.end(), [&](const BrickCandidate& c) {
+    double share = 0.0;
+    return holds(c.bounding_box_px, share);
+  });
+  const std::string reason = named              ? named->reason
+                             : under_a_candidate ? "a candidate lies on it but is not it (see its line)"
+                                                 : "no segment";
   if (verbose)
     std::fprintf(stderr, "%s: miss %s%s vis %.2f: %s\n", frame_name.c_str(), whole ? "whole " : "", top.type.c_str(),
                  top.visible_fraction, reason.c_str());

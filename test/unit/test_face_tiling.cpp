@@ -1,5 +1,6 @@
 // Touching bricks merged into one planar segment, cut apart by tiling the
 // segment with catalogue sizes along the seams the image shows.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -705,6 +706,76 @@ TEST(FaceTiling, ColourFreeLoneTopThatSmallerBoxesMakeUpIsPartialWhereTheirSeamS
   EXPECT_TRUE(lone.candidates[0].complete) << lone.candidates[0].partial_reason;
 }
 
+/// Twelve greens laid 3 x 4, all one way (a layer of a touching pile).
+test::TouchingPlatesScene gridScene()
+{
+  test::TouchingPlatesScene scene;
+  scene.camera = test::PlateScene::vgaCamera();
+  scene.origin_m = Eigen::Vector3d(0.02, -0.01, 2.4);
+  scene.rotation = test::TouchingPlatesScene::facingCamera(0.2, 0.35);
+  for (int column = 0; column < 3; ++column)
+    for (int row = 0; row < 4; ++row)
+    {
+      const Eigen::Vector2d min_m(0.6 * column - 0.9, 0.2 * row - 0.4);
+      scene.plates.push_back({min_m, min_m + Eigen::Vector2d(0.6, 0.2), cv::Vec3b(30, 170, 50)});
+    }
+  return scene;
+}
+
+TEST(FaceTiling, EachOrientationLaysEveryTileThatWay)
+{
+  test::TouchingPlatesScene scene = gridScene();
+  scene.line_darkening = 40.0;
+  const RgbdFrame frame = scene.frame();
+  const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
+  const std::vector<Segment> segments = HsvSegmenter().segment(frame, catalogue);
+  ASSERT_EQ(segments.size(), 1u);
+  const std::vector<const BrickType*> greens{catalogue.find("green")};
+  const std::vector<FaceTiling> tilings = tileFaceEach(
+      frame, segments[0], measuredUnion(scene), {greens}, 0.03, FaceTilingParams(), EdgeEvidenceParams(),
+      [](std::size_t, const std::vector<FaceTiling>&) { return true; },
+      {TileOrientation::kEither, TileOrientation::kLongAlongAxis, TileOrientation::kLongAcrossAxis});
+  ASSERT_EQ(tilings.size(), 3u);
+  // Corners 1 -> 2 run along the grid's axis, 0 -> 1 across it.
+  for (const bool along : {true, false})
+  {
+    const FaceTiling& tiling = tilings[along ? 1 : 2];
+    ASSERT_GE(tiling.tiles.size(), 2u);
+    for (const FaceTile& tile : tiling.tiles)
+    {
+      const double along_m = (tile.corners_m[2] - tile.corners_m[1]).norm();
+      const double across_m = (tile.corners_m[1] - tile.corners_m[0]).norm();
+      EXPECT_EQ(along_m > across_m, along) << along_m << " x " << across_m;
+    }
+  }
+  // Laid the way the bricks lie, the tiles are the twelve bricks.
+  const std::size_t most = std::max(tilings[1].tiles.size(), tilings[2].tiles.size());
+  EXPECT_EQ(most, 12u);
+}
+
+TEST(FaceTiling, ALayerInADimLightIsTiledTheWayItsSeamsRun)
+{
+  // frame 102 of bench_frontend's touching rows at VGA: greens in a dim
+  // light, their seams a few grey levels deep. The greedy tiler laid its
+  // first tiles across the rows and the rest followed; laid all one way,
+  // the tiles follow the seams that show.
+  test::TouchingPlatesScene scene = gridScene();
+  for (auto& plate : scene.plates) plate.rgb = cv::Vec3b(20, 95, 30);
+  scene.background_rgb = cv::Vec3b(50, 48, 46);
+  scene.line_darkening = 6.0;
+  scene.line_half_width_m = 0.003;
+  scene.colour_noise = 3.0;
+  const FrontEndResult result = FrontEnd(BrickCatalogue::mbzirc2020()).process(scene.frame());
+  int on_a_plate = 0;
+  for (const BrickCandidate& c : result.candidates)
+  {
+    EXPECT_EQ(c.type_name, "green");
+    on_a_plate += std::abs(c.length_m - 0.6) < 0.03 && std::abs(c.width_m - 0.2) < 0.03 ? 1 : 0;
+  }
+  EXPECT_EQ(on_a_plate, 12) << result.candidates.size() << " candidates";
+  EXPECT_LT(worstCornerErrorM(result.candidates, scene), 0.02);
+}
+
 TEST(FaceTiling, ParameterChecks)
 {
   FaceTilingParams params;
@@ -763,10 +834,17 @@ TEST(PlanePixelSamples, ReadsEveryPixelAsComputedAndStoresOnlyThoseNearTheOutlin
         ASSERT_DOUBLE_EQ(grey, (rgb[0] + rgb[1] + rgb[2]) / 3.0) << u << " " << v;
         const float z = frame.depthAt(u, v);
         if (std::isnan(z))
+        {
           ASSERT_TRUE(std::isnan(offset_m)) << u << " " << v;
+        }
         else
+        {
           ASSERT_DOUBLE_EQ(offset_m, plane.signedDistance(frame.camera.backProject(u, v, z))) << u << " " << v;
-        if (inside.at<std::uint8_t>(v, u)) ASSERT_TRUE(samples.stored(u, v)) << u << " " << v;
+        }
+        if (inside.at<std::uint8_t>(v, u))
+        {
+          ASSERT_TRUE(samples.stored(u, v)) << u << " " << v;
+        }
       }
     if (&outline != &outlines.front()) continue;
     // Nothing stored far from the askew face: not a corner of its image

@@ -96,6 +96,15 @@ struct FaceTiling
   double weakest_cut_line = std::numeric_limits<double>::infinity();
 };
 
+/// Which way a tiling may lay its rectangles, relative to the axis of the
+/// face's grid (its quad's, or its outline's: see face_tiling.cpp).
+enum class TileOrientation
+{
+  kEither,          ///< each rectangle either way (the greedy tiler picks)
+  kLongAlongAxis,   ///< every rectangle's length along the axis
+  kLongAcrossAxis,  ///< every rectangle's length across it
+};
+
 /// Tiles `segment` (measured as `measured`: plane and least-area quad) with
 /// rectangles of `types` (length x width, either orientation) whose edges
 /// may be off by `tolerance_m`. Empty tiles when no two rectangles fit.
@@ -103,15 +112,17 @@ FaceTiling tileFace(const RgbdFrame& frame, const Segment& segment, const BrickC
                     const std::vector<const BrickType*>& types, double tolerance_m, const FaceTilingParams& params,
                     const EdgeEvidenceParams& evidence_params);
 
-/// The same face tiled with each of `type_sets` in turn (sharing the raster
-/// and the seam evidence, which do not depend on the types), skipping the
-/// sets `wanted` refuses given the tilings made so far; the tilings made,
-/// in order. Their tiles' segments are left empty: most tilings are
-/// compared and dropped, and cutTileSegments() cuts the one kept.
+/// The same face tiled with each of `type_sets` in turn, each once per
+/// entry of `orientations` (sharing the raster and the seam evidence, which
+/// do not depend on the types), skipping the sets `wanted` refuses given
+/// the tilings made so far; the tilings made, in order (set by set, each
+/// set's orientations in order). Their tiles' segments are left empty: most
+/// tilings are compared and dropped, and cutTileSegments() cuts the one kept.
 std::vector<FaceTiling> tileFaceEach(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
                                      const std::vector<std::vector<const BrickType*>>& type_sets, double tolerance_m,
                                      const FaceTilingParams& params, const EdgeEvidenceParams& evidence_params,
-                                     const std::function<bool(std::size_t set, const std::vector<FaceTiling>& made)>& wanted);
+                                     const std::function<bool(std::size_t set, const std::vector<FaceTiling>& made)>& wanted,
+                                     const std::vector<TileOrientation>& orientations = {TileOrientation::kEither});
 
 /// Fills each tile's segment: the pixels of `segment` (the face tiled)
 /// inside the tile's image.

@@ -200,6 +200,10 @@ private:
                                  CloudProcessingTimings* cloud_timings, FaceTiling* tried = nullptr,
                                  const std::vector<const BrickType*>* only_types = nullptr) const;
 
+  /// A face of one plate colour tiled greedily and with every brick laid
+  /// each way; the greedy tiling unless a one-way one sees more seams.
+  FaceTiling tileEachWay(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                         const std::vector<const BrickType*>& types) const;
   /// Colour-free tiling of a face larger than any brick: each type alone
   /// (the smallest first), then all together; the finest tiling whose every
   /// cut is seen (a groove or a line), or none.

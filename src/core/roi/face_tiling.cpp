@@ -444,9 +444,11 @@ public:
   }
 
   Tiler(PlaneGrid& grid, const Evidence& evidence, const std::vector<const BrickType*>& types, double tolerance_m,
-        const FaceTilingParams& params, const EdgeEvidenceParams& evidence_params)
+        const FaceTilingParams& params, const EdgeEvidenceParams& evidence_params,
+        TileOrientation orientation = TileOrientation::kEither)
     : grid_(grid),
       types_(types),
+      orientation_(orientation),
       params_(params),
       evidence_params_(evidence_params),
       along_s_(evidence.along_s),
@@ -481,6 +483,8 @@ public:
         for (const BrickType* type : types_)
           for (const bool long_along_s : {true, false})
           {
+            if (orientation_ != TileOrientation::kEither && long_along_s != (orientation_ == TileOrientation::kLongAlongAxis))
+              continue;
             Placed candidate = place(type, long_along_s, anchor, best.score);
             if (candidate.type && candidate.score > best.score) best = candidate;
           }
@@ -997,6 +1001,7 @@ private:
 
   PlaneGrid& grid_;
   const std::vector<const BrickType*>& types_;
+  TileOrientation orientation_;
   const FaceTilingParams& params_;
   const EdgeEvidenceParams& evidence_params_;
   const LineEvidence& along_s_;
@@ -1292,7 +1297,8 @@ void cutTileSegments(const RgbdFrame& frame, const Segment& segment, FaceTiling&
 std::vector<FaceTiling> tileFaceEach(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
                                      const std::vector<std::vector<const BrickType*>>& type_sets, double tolerance_m,
                                      const FaceTilingParams& params, const EdgeEvidenceParams& evidence_params,
-                                     const std::function<bool(std::size_t set, const std::vector<FaceTiling>& made)>& wanted)
+                                     const std::function<bool(std::size_t set, const std::vector<FaceTiling>& made)>& wanted,
+                                     const std::vector<TileOrientation>& orientations)
 {
   std::vector<FaceTiling> tilings;
   if (!measured.plane.valid) return tilings;
@@ -1309,11 +1315,14 @@ std::vector<FaceTiling> tileFaceEach(const RgbdFrame& frame, const Segment& segm
   for (std::size_t set = 0; set < type_sets.size(); ++set)
   {
     if (!wanted(set, tilings)) continue;
-    grid.restore(untiled);
-    std::vector<Tiler::Placed> placed;
-    if (!type_sets[set].empty())
-      placed = Tiler(grid, evidence, type_sets[set], tolerance_m, params, evidence_params).run();
-    tilings.push_back(describeTiling(frame, segment, measured, grid, placed, segment_cells, evidence_params, params));
+    for (const TileOrientation orientation : orientations)
+    {
+      grid.restore(untiled);
+      std::vector<Tiler::Placed> placed;
+      if (!type_sets[set].empty())
+        placed = Tiler(grid, evidence, type_sets[set], tolerance_m, params, evidence_params, orientation).run();
+      tilings.push_back(describeTiling(frame, segment, measured, grid, placed, segment_cells, evidence_params, params));
+    }
   }
   return tilings;
 }

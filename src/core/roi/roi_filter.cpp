@@ -32,6 +32,11 @@ namespace
 /// boxes (mOSD) whose print crosses some cuts leave 0.119-0.225 with seams
 /// along at most 3 of 5.
 constexpr double kMaxUntiledForAlternative = 0.1;
+/// A face of one plate colour tiled with every brick laid one way replaces
+/// the greedy tiling only if it leaves at most this much more of the face
+/// untiled (see tileEachWay): a layout that explains less of the face is
+/// no better for seeing more seams.
+constexpr double kUntiledSlackOneWay = 0.01;
 constexpr double kMaxUntiledWithSeenSeams = 0.15;
 constexpr double kMinSeenCutShare = 0.75;
 /// A face of one brick's size is cut into smaller bricks along lines only
@@ -648,6 +653,30 @@ FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& seg
   return std::move(*best);
 }
 
+FaceTiling RoiFilter::tileEachWay(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                                  const std::vector<const BrickType*>& types) const
+{
+  // The greedy tiler lays the tile its seams support best first; where
+  // they are faint (a dim frame) its first tiles may lie across a row, and
+  // the rest follow them. Every tile laid one way, and every tile laid the
+  // other, are the layouts of most rows and layers: one of them is kept
+  // when more of its tiles have every cut seen and it leaves no more of the
+  // face untiled. Otherwise the greedy tiling stands (mixed layouts).
+  std::vector<FaceTiling> tilings = tileFaceEach(
+      frame, segment, measured, {types}, params_.dimensions.tolerance_m, params_.tiling, params_.edges,
+      [](std::size_t, const std::vector<FaceTiling>&) { return true; },
+      {TileOrientation::kEither, TileOrientation::kLongAlongAxis, TileOrientation::kLongAcrossAxis});
+  if (tilings.empty()) return FaceTiling();
+  const FaceTiling& greedy = tilings.front();
+  FaceTiling* best = &tilings.front();
+  for (std::size_t k = 1; k < tilings.size(); ++k)
+    if (supportedTileCount(tilings[k]) > supportedTileCount(*best) &&
+        tilings[k].untiled_fraction <= greedy.untiled_fraction + kUntiledSlackOneWay)
+      best = &tilings[k];
+  cutTileSegments(frame, segment, *best);
+  return std::move(*best);
+}
+
 bool RoiFilter::standsUpFromItsSurroundings(const RgbdFrame& frame, const Segment& segment,
                                             const PlaneFit& plane) const
 {
@@ -682,10 +711,10 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   if (typed_by_size && !isRaisedLayer(measured.edge_kinds, clearOfImageBorder(segment, frame, params_.edges.probe_px)) &&
       !standsUpFromItsSurroundings(frame, segment, measured.plane))
     return std::nullopt;
-  FaceTiling tiling = typed_by_size && !seams_required
-                          ? tileBySeenSeams(frame, segment, measured, types)
-                          : tileFace(frame, segment, measured, types, params_.dimensions.tolerance_m, params_.tiling,
-                                     params_.edges);
+  FaceTiling tiling = typed_by_size && !seams_required ? tileBySeenSeams(frame, segment, measured, types)
+                      : typed_by_size ? tileFace(frame, segment, measured, types, params_.dimensions.tolerance_m,
+                                                 params_.tiling, params_.edges)
+                                      : tileEachWay(frame, segment, measured, types);
   if (tried) *tried = tiling;
   if (tiling.tiles.size() < 2) return std::nullopt;
   // Without colour every cut must be seen: a cut made from sizes alone
