@@ -10,6 +10,10 @@ namespace frontend_bench
 {
 namespace
 {
+/// A missed top that a candidate lies on without being it: the candidate's
+/// own line ("not a top found") says what it is.
+constexpr const char* kUnderACandidate = "a candidate lies on it but is not it (see its line)";
+
 /// Legacy tops >= this visible give dimension and corner errors.
 constexpr double kMeasuredMinVisibleFraction = 0.95;
 
@@ -41,12 +45,15 @@ std::string missReason(const FrontEndResult& result, const eval::SceneTruth& tru
       named = &rejection;
       named_share = share;
     }
-  const bool under_a_candidate = std::any_of(result.candidates.begin(), result.candidates.end(), [&](const BrickCandidate& c) {
-    double share = 0.0;
-    return holds(c.bounding_box_px, share);
-  });
+  // Looked for only where no rejection names the miss.
+  auto underACandidate = [&]() {
+    return std::any_of(result.candidates.begin(), result.candidates.end(), [&](const BrickCandidate& c) {
+      double share = 0.0;
+      return holds(c.bounding_box_px, share);
+    });
+  };
   const std::string reason = named              ? named->reason
-                             : under_a_candidate ? "a candidate lies on it but is not it (see its line)"
+                             : underACandidate() ? kUnderACandidate
                                                  : "no segment";
   if (verbose)
     std::fprintf(stderr, "%s: miss %s%s vis %.2f: %s\n", frame_name.c_str(), whole ? "whole " : "", top.type.c_str(),
@@ -146,12 +153,11 @@ void recordFrame(const FrontEndResult& result, double cpu_ms, const eval::SceneT
   {
     if (top.visible_fraction >= match_params.legacy_min_visible_fraction && !top.legacy_found)
       ++stats.miss_reasons[missReason(result, truth, top.face, top.whole_in_view, verbose, frame_name)];
-    // A whole top a candidate lies on without holding enough of it: the
-    // candidate's own line ("not a top found") says what it is.
+    // A whole top a legacy true positive lies on without holding enough of it.
     else if (verbose && top.whole_in_view && !top.found)
-      std::fprintf(stderr, "%s: miss whole %s vis %.2f: a candidate lies on it but is not it (see its line)\n",
-                   frame_name.c_str(), truth.faces[static_cast<std::size_t>(top.face)].type.c_str(),
-                   top.visible_fraction);
+      std::fprintf(stderr, "%s: miss whole %s vis %.2f: %s\n", frame_name.c_str(),
+                   truth.faces[static_cast<std::size_t>(top.face)].type.c_str(), top.visible_fraction,
+                   kUnderACandidate);
   }
 }
 }  // namespace frontend_bench

@@ -36,17 +36,11 @@ public:
   void read(int u_px, int v_px, double& offset_m, double& grey) const
   {
     // Inline: the seam evidence reads a face's pixels about ten times each.
-    const int row = v_px - v_begin_;
-    if (row >= 0 && row < static_cast<int>(rows_.size()))
+    if (std::size_t at = 0; storedAt(u_px, v_px, at))
     {
-      const RowSpan& span = rows_[static_cast<std::size_t>(row)];
-      if (u_px >= span.u_begin && u_px < span.u_end)
-      {
-        const std::size_t at = span.first + static_cast<std::size_t>(u_px - span.u_begin);
-        offset_m = offset_m_[at];
-        grey = grey_sum_[at] / 3.0;
-        return;
-      }
+      offset_m = offset_m_[at];
+      grey = grey_sum_[at] / 3.0;
+      return;
     }
     int grey_sum = 0;
     compute(u_px, v_px, offset_m, grey_sum);
@@ -54,7 +48,11 @@ public:
   }
 
   /// Whether (u, v) was computed ahead.
-  bool stored(int u_px, int v_px) const;
+  bool stored(int u_px, int v_px) const
+  {
+    std::size_t at = 0;
+    return storedAt(u_px, v_px, at);
+  }
   /// How many pixels were computed ahead.
   std::size_t storedCount() const { return offset_m_.size(); }
 
@@ -65,6 +63,17 @@ private:
     int u_begin = 0, u_end = 0;
     std::size_t first = 0;
   };
+
+  /// Whether (u, v) was computed ahead, and where it is stored.
+  bool storedAt(int u_px, int v_px, std::size_t& at) const
+  {
+    const int row = v_px - v_begin_;
+    if (row < 0 || row >= static_cast<int>(rows_.size())) return false;
+    const RowSpan& span = rows_[static_cast<std::size_t>(row)];
+    if (u_px < span.u_begin || u_px >= span.u_end) return false;
+    at = span.first + static_cast<std::size_t>(u_px - span.u_begin);
+    return true;
+  }
 
   void compute(int u_px, int v_px, double& offset_m, int& grey_sum) const;
 

@@ -112,14 +112,6 @@ PlanePixelSamples::PlanePixelSamples(const RgbdFrame& frame, const PlaneFit& pla
   }
 }
 
-bool PlanePixelSamples::stored(int u_px, int v_px) const
-{
-  const int row = v_px - v_begin_;
-  if (row < 0 || row >= static_cast<int>(rows_.size())) return false;
-  const RowSpan& span = rows_[static_cast<std::size_t>(row)];
-  return u_px >= span.u_begin && u_px < span.u_end;
-}
-
 void PlanePixelSamples::compute(int u_px, int v_px, double& offset_m, int& grey_sum) const
 {
   const cv::Vec3b& rgb = frame_->rgb.ptr<cv::Vec3b>(v_px)[u_px];
