@@ -187,6 +187,9 @@ private:
                                         const FrameContext& context, CloudProcessingTimings* cloud_timings) const;
   /// Colour-free: whether the face is large enough for two of the smallest type.
   bool mayHoldTwoBricks(const BrickCandidate& candidate) const;
+  /// Whether no two tiles fit side by side across the face's width: any cut
+  /// of a tiling then runs across the whole face (see seam_probe.h).
+  bool oneTileWide(const BrickCandidate& candidate) const;
   /// Whether most of the surface around the segment's outline lies below
   /// its plane (see raised_layer.h).
   bool standsUpFromItsSurroundings(const RgbdFrame& frame, const Segment& segment, const PlaneFit& plane) const;

@@ -17,6 +17,7 @@
 #include "brick_pose/roi/colour_uniformity.h"
 #include "brick_pose/roi/inset_fill.h"
 #include "brick_pose/roi/raised_layer.h"
+#include "brick_pose/roi/seam_probe.h"
 #include "brick_pose/roi/plate_splitter.h"
 #include "brick_pose/roi/type_evidence.h"
 
@@ -693,6 +694,15 @@ bool RoiFilter::standsUpFromItsSurroundings(const RgbdFrame& frame, const Segmen
       .fallsAway();
 }
 
+bool RoiFilter::oneTileWide(const BrickCandidate& candidate) const
+{
+  // Two tiles side by side need a whole brick's width and the share of
+  // another's the tiler keeps a tile cut off by the border with.
+  double narrowest_m = std::numeric_limits<double>::max();
+  for (const BrickType& type : catalogue_.types()) narrowest_m = std::min(narrowest_m, type.width_m);
+  return candidate.width_m < (1.0 + params_.tiling.min_visible_fraction) * narrowest_m;
+}
+
 bool RoiFilter::mayHoldTwoBricks(const BrickCandidate& candidate) const
 {
   double smallest_area_m2 = std::numeric_limits<double>::max();
@@ -710,6 +720,10 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   const bool typed_by_size = segment.type_name.empty();
   if (typed_by_size && !isRaisedLayer(measured.edge_kinds, clearOfImageBorder(segment, frame, params_.edges.probe_px)) &&
       !standsUpFromItsSurroundings(frame, segment, measured.plane))
+    return std::nullopt;
+  if (typed_by_size && !seams_required && anyTruncated(measured) && oneTileWide(measured) &&
+      !probeSeamsAcross(frame, segment, measured, params_.edges.min_line_contrast, params_.edges.min_groove_m)
+           .seam_possible)
     return std::nullopt;
   FaceTiling tiling = typed_by_size && !seams_required ? tileBySeenSeams(frame, segment, measured, types)
                       : typed_by_size ? tileFace(frame, segment, measured, types, params_.dimensions.tolerance_m,
