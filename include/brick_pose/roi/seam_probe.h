@@ -11,6 +11,9 @@
 // cut spans the whole width, so the face's grey level and depth averaged
 // across it, bin by bin along its length, dip there as much as along the
 // cut itself. No dip near the seam's strength anywhere: no tiling to try.
+// Not looked for: a seam along the strip's length, between two bricks each
+// mostly cut off by one of its long edges (a strip cut off along both).
+// Both could only be partial; the rig never showed one.
 
 #include "brick_pose/frame/rgbd_frame.h"
 #include "brick_pose/roi/brick_candidate.h"

@@ -721,6 +721,8 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   if (typed_by_size && !isRaisedLayer(measured.edge_kinds, clearOfImageBorder(segment, frame, params_.edges.probe_px)) &&
       !standsUpFromItsSurroundings(frame, segment, measured.plane))
     return std::nullopt;
+  // Most faces cut off on a pile are one brick partly out of view: where
+  // nothing could be a seam across it, tiling would find no cut to keep.
   if (typed_by_size && !seams_required && anyTruncated(measured) && oneTileWide(measured) &&
       !probeSeamsAcross(frame, segment, measured, params_.edges.min_line_contrast, params_.edges.min_groove_m)
            .seam_possible)
