@@ -12,6 +12,25 @@ namespace brick_pose
 /// between closest ranks; NaN when `values` is empty.
 double percentile(std::vector<double> values, double fraction);
 
+/// The upper median: the middle value of an odd count, the higher of the
+/// middle two of an even one; NaN when `values` is empty. It reorders
+/// `values` partially instead of copying them (O(n)): the seam and edge
+/// tests call it per image column, where `percentile`'s sort would cost
+/// more than reading the pixels.
+double upperMedianInPlace(std::vector<double>& values);
+
+/// Centre and robust spread of a sample: its upper median and 1.4826 x the
+/// upper median of the absolute deviations from it (the standard deviation
+/// for normal noise, unmoved by a few outliers such as a seam's own pixels).
+struct RobustSpread
+{
+  double centre = 0.0;
+  double sigma = 0.0;
+};
+
+/// RobustSpread of `values`; centre NaN and sigma 0 when `values` is empty.
+RobustSpread robustSpread(std::vector<double> values);
+
 /// Arithmetic mean; NaN when `values` is empty.
 double mean(const std::vector<double>& values);
 

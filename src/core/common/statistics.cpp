@@ -16,6 +16,24 @@ double percentile(std::vector<double> values, double fraction)
   return values[below] + (position - static_cast<double>(below)) * (values[above] - values[below]);
 }
 
+double upperMedianInPlace(std::vector<double>& values)
+{
+  if (values.empty()) return std::nan("");
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+RobustSpread robustSpread(std::vector<double> values)
+{
+  RobustSpread spread;
+  spread.centre = upperMedianInPlace(values);
+  if (values.empty()) return spread;
+  for (double& value : values) value = std::abs(value - spread.centre);
+  spread.sigma = 1.4826 * upperMedianInPlace(values);
+  return spread;
+}
+
 double mean(const std::vector<double>& values)
 {
   if (values.empty()) return std::nan("");

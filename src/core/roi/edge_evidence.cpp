@@ -7,6 +7,7 @@
 
 #include "brick_pose/common/errors.h"
 #include "brick_pose/common/rounding.h"
+#include "brick_pose/common/statistics.h"
 
 namespace brick_pose
 {
@@ -76,21 +77,10 @@ int profileRows(const Eigen::Vector2d& from_px, const Eigen::Vector2d& to_px, do
   return std::max(1, static_cast<int>(std::floor((to_px - from_px).norm() / spacing_px)) + 1);
 }
 
-double median(std::vector<double>& values)
-{
-  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
-/// Robust standard deviation: 1.4826 x median absolute deviation.
+/// Robust standard deviation; 0 for fewer than three values.
 double robustSigma(std::vector<double> values)
 {
-  if (values.size() < 3) return 0.0;
-  const double centre = median(values);
-  for (double& value : values) value = std::abs(value - centre);
-  return 1.4826 * median(values);
+  return values.size() < 3 ? 0.0 : robustSpread(std::move(values)).sigma;
 }
 
 /// The profile across `line` at offsets [min_offset, max_offset], depth and
@@ -138,7 +128,7 @@ std::vector<double> columnMedians(const Profile& profile, const std::vector<floa
       const float value = values[profile.at(row, offset)];
       if (!std::isnan(value)) column.push_back(value);
     }
-    if (column.size() * 2 >= static_cast<std::size_t>(profile.rows)) medians[offset - profile.min_offset] = median(column);
+    if (column.size() * 2 >= static_cast<std::size_t>(profile.rows)) medians[offset - profile.min_offset] = upperMedianInPlace(column);
   }
   return medians;
 }
@@ -175,7 +165,7 @@ double insideScatter(const Profile& profile, const std::vector<float>& values, i
       if (!std::isnan(value)) column.push_back(value);
     }
     if (column.size() < 3) continue;
-    const double centre = median(column);
+    const double centre = upperMedianInPlace(column);
     for (int row = 0; row < profile.rows; ++row)
     {
       const float value = values[profile.at(row, offset)];
@@ -336,7 +326,7 @@ EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, doubl
       }
       sample_values.assign(2, beyond);
     }
-    const double outside = median(sample_values);
+    const double outside = upperMedianInPlace(sample_values);
     outside_values.push_back(outside);
     if (outside > step_m) ++above;
     else if (outside < -step_m) ++below;
@@ -350,9 +340,9 @@ EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, doubl
       const float value = profile.offset_m[profile.at(row, offset)];
       if (!std::isnan(value)) inside_values.push_back(value);
     }
-  const double inside = inside_values.empty() ? 0.0 : median(inside_values);
+  const double inside = inside_values.empty() ? 0.0 : upperMedianInPlace(inside_values);
   const double rows = std::max(1, profile.rows);
-  evidence.outside_offset_m = outside_values.empty() ? 0.0 : median(outside_values);
+  evidence.outside_offset_m = outside_values.empty() ? 0.0 : upperMedianInPlace(outside_values);
   const int with_depth = above + below + coplanar;
   if (border >= params.max_border_fraction * rows) evidence.kind = EdgeKind::kImageBorder;
   // Inside the edge but below the face's plane: the mask ran over the

@@ -17,6 +17,7 @@
 #include "brick_pose/common/errors.h"
 #include "brick_pose/common/parallel_for.h"
 #include "brick_pose/common/rounding.h"
+#include "brick_pose/common/statistics.h"
 #include "brick_pose/roi/cell_counts.h"
 #include "brick_pose/roi/outline_axis.h"
 #include "brick_pose/roi/plane_pixel_samples.h"
@@ -42,14 +43,6 @@ constexpr double kMaxQuadOffOutlineRad = 2.0 * kDegToRad;
 /// colour-free green, cut into two reds); a faint 1.5 mm groove scores 7.7,
 /// a dark line 24-33 (test_face_tiling).
 constexpr double kConfirmedSeamFactor = 1.5;
-
-double median(std::vector<double> values)
-{
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 /// The values that are numbers, or an evenly strided sample of them
 /// (between max_count / 2 and max_count values): a layer's grid has 10^5
@@ -379,10 +372,10 @@ LineEvidence PlaneGrid::lineEvidence(const PlanePixelSamples& pixels, bool const
   // sigma has a floor (a quarter of the smallest seam) for noise-free input.
   for (int channel = 0; channel < 2; ++channel)
   {
-    std::vector<double> values = evenSample(raw[channel], kMaxMedianSamples);
-    const double centre = median(values);
-    for (double& value : values) value = std::abs(value - centre);
-    const double sigma = std::max(0.25 * sigma_floor[channel], 1.4826 * median(values));
+    const std::vector<double> values = evenSample(raw[channel], kMaxMedianSamples);
+    const RobustSpread spread = values.empty() ? RobustSpread{} : robustSpread(values);
+    const double centre = spread.centre;
+    const double sigma = std::max(0.25 * sigma_floor[channel], spread.sigma);
     evidence.sigma[channel] = sigma;
     auto& sums = evidence.integral_sum[channel];
     auto& counts = evidence.integral_count[channel];

@@ -6,6 +6,8 @@
 #include <limits>
 #include <vector>
 
+#include "brick_pose/common/statistics.h"
+
 namespace brick_pose
 {
 namespace
@@ -31,13 +33,6 @@ struct BinSums
     return result;
   }
 };
-
-double median(std::vector<double> values)
-{
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 /// Each bin's dip: the lower of the bins `arm` to either side less the
 /// lowest within a bin of it (the seam may fall between two bins); NaN where
@@ -66,10 +61,9 @@ double strongestDip(const std::vector<double>& bin_dips, double smallest_seam, d
     if (!std::isnan(dip)) values.push_back(dip);
   read = static_cast<int>(values.size());
   if (values.size() < 3) return 0.0;
-  const double centre = median(values);
-  std::vector<double> deviations(values.size());
-  for (std::size_t k = 0; k < values.size(); ++k) deviations[k] = std::abs(values[k] - centre);
-  const double sigma = std::max(0.25 * smallest_seam, 1.4826 * median(deviations));
+  const RobustSpread spread = robustSpread(values);
+  const double centre = spread.centre;
+  const double sigma = std::max(0.25 * smallest_seam, spread.sigma);
   double strongest = 0.0;
   for (const double dip : values)
     if (dip >= min_dip) strongest = std::max(strongest, (dip - centre) / sigma);
@@ -91,7 +85,11 @@ SeamProbe probeSeamsAcross(const RgbdFrame& frame, const Segment& segment, const
   const double bin_m = depth_m / frame.camera.fx_px;
   const double margin_m = 0.05 * along.norm();
   const int bins = static_cast<int>(std::ceil((along.norm() + 2.0 * margin_m) / bin_m));
-  if (bins < 4 * params.arm_px) return probe;
+  // Fewer bins than four arms cannot show a dip against the strip's own
+  // scatter: too short a strip to tell noise from a seam, so the tiler
+  // decides (seam_possible stays true).
+  const int min_bins = 4 * params.arm_px;
+  if (bins < min_bins) return probe;
   BinSums grey(bins), offset(bins);
   const cv::Rect& box = segment.bounding_box_px;
   for (int row = 0; row < segment.mask.rows; ++row)
@@ -115,7 +113,7 @@ SeamProbe probeSeamsAcross(const RgbdFrame& frame, const Segment& segment, const
   // Bins short of half the typical count (the face's ends, cut slantwise)
   // average too few pixels to compare.
   std::vector<double> counts(grey.count.begin(), grey.count.end());
-  const int typical = static_cast<int>(median(counts));
+  const int typical = static_cast<int>(upperMedianInPlace(counts));
   const std::vector<double> grey_means = grey.means(typical / 2);
   const std::vector<double> offset_means = offset.means(typical / 2);
   std::vector<double> inverted(grey_means.size());
@@ -128,8 +126,7 @@ SeamProbe probeSeamsAcross(const RgbdFrame& frame, const Segment& segment, const
   const double groove = strongestDip(dips(offset_means, params.arm_px), smallest_groove_m, min_groove, groove_read);
   probe.bins = dark_read;
   probe.strongest = std::max({dark, bright, groove});
-  // Too short a strip to tell noise from a seam: the tiler decides.
-  probe.seam_possible = probe.bins < 4 * params.arm_px || probe.strongest >= params.min_strength;
+  probe.seam_possible = probe.bins < min_bins || probe.strongest >= params.min_strength;
   return probe;
 }
 }  // namespace brick_pose
