@@ -145,4 +145,21 @@ TEST(BrickCatalogue, BoxesConfigHoldsPlainCardboardBoxes)
   EXPECT_DOUBLE_EQ(boxes.at("box_large").height_m, 0.25);
   EXPECT_DOUBLE_EQ(boxes.at("box_small").length_m, 0.30);
 }
+
+TEST(BrickCatalogue, ARestingItemCouldRiseByAnyOfItsExtentsOrTwoStacked)
+{
+  const BrickCatalogue boxes = BrickCatalogue::fromYamlFile(BRICK_POSE_SOURCE_DIR "/config/boxes.yaml");
+  // box_flat lying flat (0.07), box_small on its side (0.20), two box_flat
+  // (0.14), box_large on an end (0.40).
+  for (const double height_m : {0.07, 0.20, 0.14, 0.40})
+    EXPECT_TRUE(boxes.couldRiseTo(height_m + 0.01, 0.015)) << height_m;
+  // box_large beside box_small (0.10) and beside box_flat (0.18): nothing
+  // of the catalogue lying on the lower box rises that high.
+  EXPECT_FALSE(boxes.couldRiseTo(0.10, 0.015));
+  EXPECT_FALSE(boxes.couldRiseTo(0.18, 0.015));
+  // box_small beside box_flat (0.08) is within the margin of a box_flat
+  // lying there: ambiguous.
+  EXPECT_TRUE(boxes.couldRiseTo(0.08, 0.015));
+  EXPECT_FALSE(BrickCatalogue().couldRiseTo(0.1, 0.015));
+}
 }  // namespace brick_pose

@@ -151,23 +151,68 @@ TEST(EdgeEvidence, ASideFaceSeenAtAGrazingAngleOnAFarNoisyFaceIsARealEdge)
   }
 }
 
-TEST(EdgeEvidence, NearerSurfaceBeyondTheEdgeIsAnOcclusion)
+/// The face covers u < edge_u; beyond the edge a surface 0.15 m nearer.
+RgbdFrame nearerBeyond(double edge_u)
 {
-  const RgbdFrame frame = makeFrame([](int u, int) { return u < kEdgeU ? kFaceDepthM : kFaceDepthM - 0.15; }, plainGrey);
-  EXPECT_EQ(classify(frame), EdgeKind::kOcclusion);
+  return makeFrame([edge_u](int u, int) { return u < edge_u ? kFaceDepthM : kFaceDepthM - 0.15; }, plainGrey);
+}
+
+TEST(EdgeEvidence, NearerSurfaceTheCameraLooksOverIsAnOcclusion)
+{
+  // The edge is 60 px left of the principal point and the nearer surface
+  // lies toward it: a wall 0.15 m tall standing on the edge would hide
+  // 0.15 x 0.24 / 1.2 = 3 cm of the face, so the face may go on under it.
+  constexpr double kEdgeLeftU = 100.0;
+  EXPECT_EQ(classify(nearerBeyond(kEdgeLeftU), kEdgeLeftU), EdgeKind::kOcclusion);
   EXPECT_FALSE(isRealEdge(EdgeKind::kOcclusion));
+}
+
+TEST(EdgeEvidence, NearerSurfaceAlongAWallTheCameraSeesIsAStepUp)
+{
+  // Right of the principal point the camera sees a wall standing on the
+  // edge; straight below it, the wall hides nothing either.
+  for (const double edge_u : {220.0, kEdgeU})
+    EXPECT_EQ(classify(nearerBeyond(edge_u), edge_u), EdgeKind::kStepUp) << edge_u;
+  // Real only after RoiFilter has ruled out, by the wall's height, that
+  // it rests on the face (BrickCatalogue::couldRiseTo).
+  EXPECT_TRUE(isRealEdge(EdgeKind::kStepUp));
+  EdgeEvidenceParams strict;
+  strict.max_hidden_by_wall_m = 0.0;
+  EXPECT_EQ(classifyEdge(nearerBeyond(220.0), facePlane(), Eigen::Vector2d(220.0, 30.0), Eigen::Vector2d(220.0, 210.0),
+                         Eigen::Vector2d(1.0, 0.0), strict)
+                .kind,
+            EdgeKind::kStepUp);
+}
+
+/// A step down along most of the edge at `edge_u`, a surface 0.15 m nearer
+/// beyond its lower third.
+RgbdFrame nearerBeyondLowerThird(double edge_u)
+{
+  return makeFrame(
+      [edge_u](int u, int v) {
+        if (u < edge_u) return kFaceDepthM;
+        return v > 150 ? kFaceDepthM - 0.15 : kFaceDepthM + 0.2;
+      },
+      plainGrey);
 }
 
 TEST(EdgeEvidence, AnOccluderOverPartOfTheEdgeMakesItAnOcclusion)
 {
-  // A step down along most of the edge, an occluder over its lower third.
+  // Whether the camera looks over it (left of the principal point: it
+  // hides 3 cm) or would see a wall standing there: a wall along part of
+  // the edge only is no neighbour's standing beside the whole face.
+  for (const double edge_u : {100.0, 220.0})
+    EXPECT_EQ(classify(nearerBeyondLowerThird(edge_u), edge_u), EdgeKind::kOcclusion) << edge_u;
+}
+
+TEST(EdgeEvidence, AWallWhoseHeightChangesAlongTheEdgeIsAnOcclusion)
+{
+  // A tilted surface beyond the edge, 0.10 m nearer at the top of the edge
+  // and 0.20 m at its bottom: not the wall of a level neighbour.
   const RgbdFrame frame = makeFrame(
-      [](int u, int v) {
-        if (u < kEdgeU) return kFaceDepthM;
-        return v > 150 ? kFaceDepthM - 0.15 : kFaceDepthM + 0.2;
-      },
+      [](int u, int v) { return u < 220.0 ? kFaceDepthM : kFaceDepthM - 0.10 - 0.10 * (v - 30) / 180.0; },
       plainGrey);
-  EXPECT_EQ(classify(frame), EdgeKind::kOcclusion);
+  EXPECT_EQ(classify(frame, 220.0), EdgeKind::kOcclusion);
 }
 
 // The edge's profiles leave out its ends (corners are rounded and mixed), so

@@ -73,6 +73,12 @@ public:
 
   std::string namesJoined() const;
 
+  /// Whether an item of the catalogue lying on a face, on its bottom, a side
+  /// or an end, alone or on another one, could rise `height_m` above it
+  /// (within `margin_m`): a wall that high beside a face may be resting on
+  /// it rather than standing beside it.
+  bool couldRiseTo(double height_m, double margin_m) const;
+
 private:
   std::vector<BrickType> types_;
 };

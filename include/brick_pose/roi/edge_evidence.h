@@ -34,6 +34,12 @@ enum class EdgeKind : std::uint8_t
   kColourLine,   ///< The plane continues with a line (darker or brighter) along the edge but no
                  ///< groove: a seam between touching plates of one colour, or just print on a box.
   kOcclusion,    ///< A nearer surface lies beyond the edge: the face may continue under it.
+  kStepUp,       ///< A nearer surface all along the edge that, as a wall standing there, would
+                 ///< hide at most max_hidden_by_wall_m of the face: a taller neighbour beside the face (the face ends)
+                 ///< or something resting on it (the face goes on beneath). Not real by itself:
+                 ///< the wall's height decides (RoiFilter, against the catalogue).
+  kWallUp,       ///< A nearer surface rises from the face's plane at the edge: a wall standing
+                 ///< beside the face (a taller neighbour) or on it (something resting there).
   kImageBorder,  ///< The edge runs along the image border: the face may continue outside the image.
   kMaskEdge,     ///< The plane continues beyond the edge with nothing marking it (a mask or split boundary).
   kNoDepth,      ///< Too little depth beyond the edge to tell.
@@ -42,7 +48,8 @@ enum class EdgeKind : std::uint8_t
 };
 
 /// True for the kinds that show where a brick ends: a step down, a crease,
-/// a seam, and a colour line only on a face of uniform colour (a plate
+/// a seam, a step up to a wall (once RoiFilter has ruled out, by its
+/// height, that it rests on the face), and a colour line only on a face of uniform colour (a plate
 /// found by its colour), not on printed boxes where lines are everywhere.
 bool isRealEdge(EdgeKind kind, bool uniform_colour = false);
 /// Short name: "step down", "crease", "seam", "occlusion boundary", ...
@@ -95,6 +102,11 @@ struct EdgeEvidenceParams
   /// farther below is a hole in a joined face (the ground seen between two
   /// pieces of one plate under a cover), judged by what lies beyond.
   double max_overrun_m = 0.06;
+  /// A nearer surface all along an edge is a wall standing there
+  /// (kStepUp) when, standing upright on the edge, it would hide at most
+  /// this much (m) of the face across the edge: none when the camera sees
+  /// the wall, a strip h x tan(view angle) when it looks over it.
+  double max_hidden_by_wall_m = 0.01;
 
   void validate() const;  ///< Throws ConfigError naming the field.
 };

@@ -186,6 +186,19 @@ const BrickType* BrickCatalogue::find(const std::string& name) const
   return nullptr;
 }
 
+bool BrickCatalogue::couldRiseTo(double height_m, double margin_m) const
+{
+  std::vector<double> extents_m;
+  for (const BrickType& type : types_) extents_m.insert(extents_m.end(), {type.height_m, type.width_m, type.length_m});
+  for (std::size_t i = 0; i < extents_m.size(); ++i)
+  {
+    if (std::abs(extents_m[i] - height_m) <= margin_m) return true;
+    for (std::size_t j = i; j < extents_m.size(); ++j)
+      if (std::abs(extents_m[i] + extents_m[j] - height_m) <= margin_m) return true;
+  }
+  return false;
+}
+
 const BrickType& BrickCatalogue::at(const std::string& name) const
 {
   const BrickType* type = find(name);

@@ -95,6 +95,8 @@ ParamBindings frontEndBindings(FrontEndParams& params)
           {"edge_min_line_contrast", &roi.edges.min_line_contrast},
           {"edge_seam_noise_factor", &roi.edges.seam_noise_factor},
           {"edge_max_overrun_m", &roi.edges.max_overrun_m},
+          {"edge_max_hidden_by_wall_m", &roi.edges.max_hidden_by_wall_m},
+          {"resting_height_margin_m", &roi.resting_height_margin_m},
           {"tiling_min_seam_strength", &roi.tiling.min_seam_strength},
           {"side_height_tolerance_m", &roi.sides.height_tolerance_m},
           {"side_height_tolerance_fraction", &roi.sides.height_tolerance_fraction},

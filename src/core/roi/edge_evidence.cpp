@@ -286,6 +286,28 @@ bool fallsAway(double outside_m, double inside_m, int rows_with_depth, double st
          std::max(outside_m, outside_m - inside_m) < -std::max(params.min_step_m, 0.5 * step_m);
 }
 
+/// How much of the face a wall `height_m` tall standing upright on the edge
+/// (perpendicular to the face) hides from the camera, measured across the
+/// edge on the face's plane (m): zero or less when the camera is on the
+/// face's side and sees the wall; infinite when the geometry is degenerate.
+/// The camera sits at the origin; the line of sight to the edge rises by
+/// (-M).n per (-M).e across it.
+double hiddenByWallM(const ProfileLine& line, double height_m)
+{
+  constexpr double kInfinite = std::numeric_limits<double>::infinity();
+  const Eigen::Vector2d middle_px = line.onEdge(line.rows / 2);
+  const Eigen::Vector2d beyond_px = middle_px + line.outward.normalized();
+  Eigen::Vector3d middle_m, beyond_m;
+  if (!line.plane.intersectRay(line.frame.camera.ray(middle_px.x(), middle_px.y()), middle_m) ||
+      !line.plane.intersectRay(line.frame.camera.ray(beyond_px.x(), beyond_px.y()), beyond_m))
+    return kInfinite;
+  Eigen::Vector3d outward_m = beyond_m - middle_m;
+  outward_m -= outward_m.dot(line.plane.normal) * line.plane.normal;
+  const double rise = -middle_m.dot(line.plane.normal);
+  if (!(outward_m.norm() > 0.0) || !(std::abs(rise) > 1e-9)) return kInfinite;
+  return height_m * -middle_m.dot(outward_m.normalized()) / std::abs(rise);
+}
+
 /// Judges one stretch of an edge from its profile.
 EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, double step_m,
                           const EdgeEvidenceParams& params)
@@ -349,8 +371,17 @@ EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, doubl
   // face's edge onto a side face. (Above it is a cover lying across the
   // face; the outside band tells about that.)
   else if (inside < -step_m && inside > -params.max_overrun_m) evidence.kind = EdgeKind::kOverrun;
-  // A quarter of nearer samples is an occluder over part of the stretch.
-  else if (above * 4 >= with_depth + missing && above > 0) evidence.kind = EdgeKind::kOcclusion;
+  // A quarter of nearer samples is an occluder over part of the stretch;
+  // nearer samples all along it, which as a wall standing upright on the
+  // edge would hide almost none of the face, may be that wall: a taller
+  // neighbour or something resting on the face (only its height tells).
+  else if (above * 4 >= with_depth + missing && above > 0)
+  {
+    const bool all_along = above * 4 >= 3 * (with_depth + missing);
+    evidence.kind = all_along && hiddenByWallM(line, evidence.outside_offset_m) <= params.max_hidden_by_wall_m
+                        ? EdgeKind::kStepUp
+                        : EdgeKind::kOcclusion;
+  }
   else if (with_depth < params.min_depth_fraction * (rows - border)) evidence.kind = EdgeKind::kNoDepth;
   else if (below >= coplanar || fallsAway(evidence.outside_offset_m, inside, with_depth, step_m, params))
   {
@@ -382,6 +413,7 @@ int badness(EdgeKind kind)
     case EdgeKind::kOverrun: return 6;
     case EdgeKind::kMaskEdge: return 5;
     case EdgeKind::kUnknown: return 4;
+    case EdgeKind::kStepUp: return 4;
     case EdgeKind::kColourLine: return 3;
     case EdgeKind::kSeam: return 2;
     case EdgeKind::kCrease: return 1;
@@ -394,6 +426,7 @@ int badness(EdgeKind kind)
 bool isRealEdge(EdgeKind kind, bool uniform_colour)
 {
   return kind == EdgeKind::kStepDown || kind == EdgeKind::kCrease || kind == EdgeKind::kSeam ||
+         kind == EdgeKind::kStepUp ||
          (uniform_colour && kind == EdgeKind::kColourLine);
 }
 
@@ -406,6 +439,7 @@ std::string toString(EdgeKind kind)
     case EdgeKind::kSeam: return "seam";
     case EdgeKind::kColourLine: return "colour line";
     case EdgeKind::kOcclusion: return "occlusion boundary";
+    case EdgeKind::kStepUp: return "step up to a wall standing on the edge";
     case EdgeKind::kImageBorder: return "image border";
     case EdgeKind::kMaskEdge: return "continuing plane (no edge seen)";
     case EdgeKind::kNoDepth: return "edge without depth beyond it";
@@ -431,6 +465,7 @@ void EdgeEvidenceParams::validate() const
   check.require(min_line_contrast > 0.0, "min_line_contrast", "must be > 0");
   check.require(seam_noise_factor >= 0.0, "seam_noise_factor", "must be >= 0");
   check.require(max_overrun_m > min_step_m, "max_overrun_m", "must be > min_step_m");
+  check.require(max_hidden_by_wall_m >= 0.0, "max_hidden_by_wall_m", "must be >= 0");
   check.require(seam_search_px >= 0 && seam_search_px + kSeamArm <= probe_px, "seam_search_px",
           "must be in [0, probe_px - 3]");
 }
@@ -474,13 +509,26 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
   const Eigen::Vector2d start = a_px + margin * (b_px - a_px), end = b_px - margin * (b_px - a_px);
   // Short edges are examined in fewer stretches, each ~20 px at least.
   const int stretches = std::max(1, std::min(params.stretches, static_cast<int>((1.0 - 2.0 * margin) * length_px / 20.0)));
+  double lowest_step_up_m = std::numeric_limits<double>::infinity(), highest_step_up_m = -lowest_step_up_m;
+  int steps_up = 0;
   for (int k = 0; k < stretches; ++k)
   {
     const Eigen::Vector2d from = start + (static_cast<double>(k) / stretches) * (end - start);
     const Eigen::Vector2d to = start + (static_cast<double>(k + 1) / stretches) * (end - start);
     const EdgeEvidence stretch = judgeSpan(frame, plane, from, to, outward, params);
     if (k == 0 || badness(stretch.kind) > badness(worst.kind)) worst = stretch;
+    if (stretch.kind != EdgeKind::kStepUp) continue;
+    ++steps_up;
+    lowest_step_up_m = std::min(lowest_step_up_m, stretch.outside_offset_m);
+    highest_step_up_m = std::max(highest_step_up_m, stretch.outside_offset_m);
   }
+  // A wall standing beside the face is one neighbour's, level with it: the
+  // same height all along the edge. A wall over part of the edge only, or
+  // one whose height changes along it (a tilted brick lying across the
+  // face's end), may be something lying over the face.
+  if (worst.kind == EdgeKind::kStepUp &&
+      (steps_up < stretches || highest_step_up_m - lowest_step_up_m > params.min_step_m))
+    worst.kind = EdgeKind::kOcclusion;
   return worst;
 }
 

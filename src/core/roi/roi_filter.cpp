@@ -303,8 +303,10 @@ double unsegmentedCoplanarFraction(const RgbdFrame& frame, const BrickCandidate&
   return quad_px > 0 ? static_cast<double>(coplanar_px) / quad_px : 0.0;
 }
 
-/// What lies beyond each quad edge (see edge_evidence.h).
-EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate, const EdgeEvidenceParams& params)
+/// What lies beyond each quad edge (see edge_evidence.h). A step up to a
+/// wall as high as something resting on the face could be is an occlusion.
+EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate, const EdgeEvidenceParams& params,
+                        const BrickCatalogue& catalogue, double resting_height_margin_m)
 {
   EdgeKinds kinds;
   for (int k = 0; k < 4; ++k)
@@ -313,7 +315,11 @@ EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate,
     const Eigen::Vector2d& b = candidate.corners_px[(k + 1) % 4];
     Eigen::Vector2d outward(b.y() - a.y(), a.x() - b.x());
     if (outward.dot(0.5 * (a + b) - candidate.centroid_px) < 0.0) outward = -outward;
-    kinds[k] = classifyEdge(frame, candidate.plane, a, b, outward, params).kind;
+    const EdgeEvidence evidence = classifyEdge(frame, candidate.plane, a, b, outward, params);
+    kinds[k] = evidence.kind;
+    if (kinds[k] == EdgeKind::kStepUp &&
+        catalogue.couldRiseTo(evidence.outside_offset_m, resting_height_margin_m))
+      kinds[k] = EdgeKind::kOcclusion;
     if (isRealEdge(kinds[k], true) &&
         occlusionAtEdgeEnds(frame, candidate.plane, a, b, outward, params) == EdgeKind::kOcclusion)
       kinds[k] = EdgeKind::kOcclusion;
@@ -425,6 +431,7 @@ void RoiFilterParams::validate() const
           "dimensions.min_visible_fraction", "must be in (0, 1]");
   check.require(classification_tolerance_m >= 0.0, "classification_tolerance_m", "must be >= 0");
   check.require(min_fill_ratio >= 0.0 && min_fill_ratio <= 1.0, "min_fill_ratio", "must be in [0, 1]");
+  check.require(resting_height_margin_m >= 0.0, "resting_height_margin_m", "must be >= 0");
   check.require(ragged_outline_px >= 0.0, "ragged_outline_px", "must be >= 0");
   check.require(std::isfinite(up_direction.norm()), "up_direction", "must be finite");
   check.require(max_tilt_deg > 0.0 && max_tilt_deg <= 90.0, "max_tilt_deg", "must be in (0, 90]");
@@ -888,7 +895,7 @@ std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const S
   candidate.t2_m = candidate.centroid_m - 0.25 * candidate.length_m * long_axis;
   candidate.t1_px = camera.project(candidate.t1_m);
   candidate.t2_px = camera.project(candidate.t2_m);
-  candidate.edge_kinds = classifyEdges(frame, candidate, params_.edges);
+  candidate.edge_kinds = classifyEdges(frame, candidate, params_.edges, catalogue_, params_.resting_height_margin_m);
   for (int k = 0; k < 4; ++k)
     candidate.edge_truncated[k] =
         candidate.edge_kinds[k] == EdgeKind::kImageBorder || candidate.edge_kinds[k] == EdgeKind::kOcclusion;
