@@ -42,13 +42,14 @@ struct RoiFilterParams
   /// Colour-free segments get the type whose length and width are both
   /// within this distance (closest wins); they must be complete faces.
   double classification_tolerance_m = 0.05;
-  /// A step up at an edge to a wall the camera sees (EdgeKind::kStepUp)
-  /// ends the face only when no catalogue item, lying on its bottom, a side
-  /// or an end, alone or on another, could rest on the face and rise that
-  /// high: within this margin (m) of such a height it may be resting there,
-  /// and the face may go on beneath it (an occlusion). The pile is assumed to
-  /// hold catalogue items: a foreign object resting along a whole edge, of a
-  /// height no item has, would pass.
+  /// A step up at an edge to a wall standing there (EdgeKind::kStepUp: one
+  /// height all along the edge, hiding at most edges.max_hidden_by_wall_m
+  /// of the face) ends the face only when no catalogue item, lying on its
+  /// bottom, a side or an end, alone or on another, could rest on the face
+  /// and rise that high: within this margin (m) of such a height it may be
+  /// resting there, and the face may go on beneath it (an occlusion). The
+  /// pile is assumed to hold catalogue items: a foreign object resting
+  /// along a whole edge, of a height no item has, would pass.
   double resting_height_margin_m = 0.015;
   /// Colour-free segments must also fill their quad this well: pieces of
   /// the ground or of merged faces are not rectangles.
