@@ -34,12 +34,11 @@ enum class EdgeKind : std::uint8_t
   kColourLine,   ///< The plane continues with a line (darker or brighter) along the edge but no
                  ///< groove: a seam between touching plates of one colour, or just print on a box.
   kOcclusion,    ///< A nearer surface lies beyond the edge: the face may continue under it.
-  kStepUp,       ///< A nearer surface all along the edge that, as a wall standing there, would
-                 ///< hide at most max_hidden_by_wall_m of the face: a taller neighbour beside the face (the face ends)
-                 ///< or something resting on it (the face goes on beneath). Not real by itself:
-                 ///< the wall's height decides (RoiFilter, against the catalogue).
-  kWallUp,       ///< A nearer surface rises from the face's plane at the edge: a wall standing
-                 ///< beside the face (a taller neighbour) or on it (something resting there).
+  kStepUp,       ///< A nearer surface all along the edge, at one height, that as a wall standing
+                 ///< there would hide at most max_hidden_by_wall_m of the face: a taller neighbour
+                 ///< beside the face (the face ends) or something resting on it (the face goes on
+                 ///< beneath). Only the wall's height tells which: RoiFilter turns it into
+                 ///< kOcclusion when a catalogue item resting on the face could be that high.
   kImageBorder,  ///< The edge runs along the image border: the face may continue outside the image.
   kMaskEdge,     ///< The plane continues beyond the edge with nothing marking it (a mask or split boundary).
   kNoDepth,      ///< Too little depth beyond the edge to tell.
@@ -127,6 +126,8 @@ struct EdgeEvidence
 /// `outward_px` is the image direction away from the face (need not be
 /// unit). The worst stretch decides: border, then occlusion, then no depth,
 /// then a mask edge; among real kinds a seam, then a crease, then a step.
+/// A step up stands only when every stretch is one, at one height
+/// (within min_step_m); otherwise the edge is an occlusion.
 EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
                           const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
                           const EdgeEvidenceParams& params = EdgeEvidenceParams());
