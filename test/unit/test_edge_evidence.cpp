@@ -2,6 +2,7 @@
 // profiles with the noise of a real sensor.
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -234,6 +235,29 @@ TEST(EdgeEvidence, AnOccluderOverOnlyACornerIsSeenAtTheEdgeEnd)
   EXPECT_EQ(endsOf(covered), EdgeKind::kOcclusion);
   const RgbdFrame clear = makeFrame(depth(false), plainGrey);
   EXPECT_EQ(endsOf(clear), EdgeKind::kUnknown);
+}
+
+TEST(EdgeEvidence, AWallOverAWholeEdgeEndIsAnOcclusionUnlessItIsTheEdgesOwnStepUp)
+{
+  // A nearer surface over the whole end next to corner 0 (v 30-44), the
+  // camera straight above: as a wall it would hide nothing (a step up), but
+  // on an edge that steps down elsewhere it is something lying across the
+  // corner.
+  const RgbdFrame frame = makeFrame(
+      [](int u, int v) {
+        if (u < kEdgeU) return kFaceDepthM;
+        return v < 50 ? kFaceDepthM - 0.15 : kFaceDepthM + 0.2;
+      },
+      plainGrey);
+  const auto endsOf = [&frame](double step_up_height_m) {
+    return occlusionAtEdgeEnds(frame, facePlane(), Eigen::Vector2d(kEdgeU, 30.0), Eigen::Vector2d(kEdgeU, 210.0),
+                               Eigen::Vector2d(1.0, 0.0), EdgeEvidenceParams(), step_up_height_m);
+  };
+  EXPECT_EQ(endsOf(std::numeric_limits<double>::quiet_NaN()), EdgeKind::kOcclusion);
+  // On an edge that is itself a step up to a wall 0.15 m high, the same
+  // wall reaching the corner is that wall; one of another height is not.
+  EXPECT_EQ(endsOf(0.15), EdgeKind::kUnknown);
+  EXPECT_EQ(endsOf(0.25), EdgeKind::kOcclusion);
 }
 
 TEST(EdgeEvidence, PlaneContinuingBeyondTheEdgeIsAMaskEdge)

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include <Eigen/Core>
@@ -135,10 +136,14 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
 /// The ends of the same edge, which classifyEdge() leaves out (the
 /// end_margin_fraction next to each corner), judged the same way: kOcclusion
 /// when a nearer surface reaches over either end, else kUnknown. Something
-/// lying across a face's corner hides it from the edges' own profiles.
+/// lying across a face's corner hides it from the edges' own profiles. A
+/// step up at an end is such a surface too, unless the edge is itself a
+/// step up kept as the face's end, to a wall `step_up_height_m` high, and
+/// the end's wall has that height (within min_step_m): then it is that wall.
 EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
                              const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
-                             const EdgeEvidenceParams& params = EdgeEvidenceParams());
+                             const EdgeEvidenceParams& params = EdgeEvidenceParams(),
+                             double step_up_height_m = std::numeric_limits<double>::quiet_NaN());
 
 /// Evidence of a seam along a line that crosses a face (both sides on
 /// `plane`): the groove depth and dark-line contrast over the whole line,

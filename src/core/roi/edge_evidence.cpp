@@ -534,14 +534,19 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
 
 EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
                              const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
-                             const EdgeEvidenceParams& params)
+                             const EdgeEvidenceParams& params, double step_up_height_m)
 {
   const double length_px = (b_px - a_px).norm();
   if (!judgeable(length_px, outward_px, plane)) return EdgeKind::kUnknown;
   const Eigen::Vector2d outward = outward_px.normalized();
   const Eigen::Vector2d end_length = endMargin(length_px, params) * (b_px - a_px);
-  if (judgeSpan(frame, plane, a_px, a_px + end_length, outward, params).kind == EdgeKind::kOcclusion ||
-      judgeSpan(frame, plane, b_px - end_length, b_px, outward, params).kind == EdgeKind::kOcclusion)
+  // (NaN, no step up of the edge's own: every step up at an end is nearer.)
+  const auto nearerOver = [&](const EdgeEvidence& end) {
+    return end.kind == EdgeKind::kOcclusion ||
+           (end.kind == EdgeKind::kStepUp && !(std::abs(end.outside_offset_m - step_up_height_m) <= params.min_step_m));
+  };
+  if (nearerOver(judgeSpan(frame, plane, a_px, a_px + end_length, outward, params)) ||
+      nearerOver(judgeSpan(frame, plane, b_px - end_length, b_px, outward, params)))
     return EdgeKind::kOcclusion;
   return EdgeKind::kUnknown;
 }

@@ -320,8 +320,10 @@ EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate,
     if (kinds[k] == EdgeKind::kStepUp &&
         catalogue.couldRiseTo(evidence.outside_offset_m, resting_height_margin_m))
       kinds[k] = EdgeKind::kOcclusion;
+    const double step_up_height_m =
+        kinds[k] == EdgeKind::kStepUp ? evidence.outside_offset_m : std::numeric_limits<double>::quiet_NaN();
     if (isRealEdge(kinds[k], true) &&
-        occlusionAtEdgeEnds(frame, candidate.plane, a, b, outward, params) == EdgeKind::kOcclusion)
+        occlusionAtEdgeEnds(frame, candidate.plane, a, b, outward, params, step_up_height_m) == EdgeKind::kOcclusion)
       kinds[k] = EdgeKind::kOcclusion;
   }
   // The profiles stay clear of the corners, so a corner just past the border
