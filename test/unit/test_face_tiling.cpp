@@ -422,6 +422,41 @@ TEST(FaceTiling, ColourFreeTouchingBricksAreCutAtFaintSeamsInADimLight)
   ASSERT_NO_FATAL_FAILURE(expectWholeBricks(faint, scene, 3u, "green"));
 }
 
+/// `count` plain plates of `length_m` x 0.2 m in a low light (mean grey 27),
+/// their seams lines `line_darkening` grey levels dark under 2 levels of
+/// pixel noise.
+test::TouchingPlatesScene lowLightRow(int count, double length_m, double line_darkening)
+{
+  test::TouchingPlatesScene scene = rowScene(count, length_m, 0.2);
+  for (auto& plate : scene.plates) plate.rgb = cv::Vec3b(40, 24, 18);
+  scene.background_rgb = cv::Vec3b(20, 19, 18);
+  scene.line_darkening = line_darkening;
+  scene.line_half_width_m = 0.003;
+  scene.colour_noise = 2.0;
+  return scene;
+}
+
+TEST(FaceTiling, ColourFreeBlueSizedFaceOfFourRedsInALowLightIsCutAtClearLines)
+{
+  // Four reds end to end make a blue's top. In a low light their seams draw
+  // lines of 6 grey levels on a face of grey 27: as clear a share of its
+  // light as 15 levels are of a face in normal light.
+  const test::TouchingPlatesScene scene = lowLightRow(1, 1.2, 6.0);
+  test::TouchingPlatesScene reds = scene;
+  reds.plates.clear();
+  for (int k = 0; k < 4; ++k)
+    reds.plates.push_back({{-0.6 + 0.3 * k, -0.1}, {-0.3 + 0.3 * k, 0.1}, scene.plates.front().rgb});
+  const FrontEnd front_end(BrickCatalogue::mbzirc2020(), colourFreeParams());
+  ASSERT_NO_FATAL_FAILURE(expectWholeBricks(front_end.process(reds.frame()), reds, 4u, "red"));
+
+  // Lines of 3 levels (11 % of the light) are seen but no proof of four
+  // reds: one blue, and not complete.
+  reds.line_darkening = 3.0;
+  const FrontEndResult faint = front_end.process(reds.frame());
+  EXPECT_EQ(completeCount(faint), 0);
+  for (const BrickCandidate& c : faint.candidates) EXPECT_FALSE(c.partial_reason.empty());
+}
+
 TEST(FaceTiling, ColourFreeTouchingBricksWithAFattenedOutlineAreCutAtTheirSeam)
 {
   // Two greens side by side, their rims and their seam dark. A D4xx

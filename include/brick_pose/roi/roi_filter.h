@@ -73,6 +73,16 @@ struct RoiFilterParams
   /// Colour-free: whether a tile of a merged face is of one plain colour,
   /// so that a line along its cut is a seam (see colour_uniformity.h).
   ColourUniformityParams uniformity;
+  /// On a plain face (see colour_uniformity.h) darker than grey level
+  /// edges.min_line_contrast / plain_seam_line_share (100 by default: a red
+  /// plate, a face in low light), a line is a seam, for the tiler and for
+  /// the edges of its tiles, from this share of the face's mean grey level
+  /// (and at least one level) instead of from edges.min_line_contrast: a
+  /// seam's shading is a share of the light the face sends back (its
+  /// colour, the lighting, the camera's exposure), so a dark face's seams
+  /// are as faint in proportion. Printed faces keep the absolute floor
+  /// (their lines are print). 0 keeps edges.min_line_contrast everywhere.
+  double plain_seam_line_share = 0.06;
   PlaneFitParams plane;
   QuadFitParams quad;
   /// The bricks a merged face is cut into are measured on this many threads
@@ -154,11 +164,15 @@ public:
 
 private:
   /// Points, plane, OBB and outline geometry; the reason when it fails.
+  /// `edges` (optional) replaces params_.edges in reading its edges: a
+  /// tile's, read as its tiling read the seams (see seamParamsFor).
   std::optional<std::string> measure(const RgbdFrame& frame, const Segment& segment, const FrameContext& context,
-                                     CloudProcessingTimings* cloud_timings, BrickCandidate& candidate) const;
-  /// Quad, corners, T1/T2, centre, dimensions and edge evidence from the
-  /// mask and the plane.
-  std::optional<std::string> fitOutline(const RgbdFrame& frame, const Segment& segment, BrickCandidate& candidate) const;
+                                     CloudProcessingTimings* cloud_timings, BrickCandidate& candidate,
+                                     const EdgeEvidenceParams* edges = nullptr) const;
+  /// Quad, corners, T1/T2, centre, dimensions and edge evidence (read with
+  /// `edges`) from the mask and the plane.
+  std::optional<std::string> fitOutline(const RgbdFrame& frame, const Segment& segment, const EdgeEvidenceParams& edges,
+                                        BrickCandidate& candidate) const;
   /// The type of a measured face: the segment's colour's (HSV), or the
   /// catalogue size it matches (colour-free; when several fit, the one whose
   /// height the sides seen below the face's edges agree with).
@@ -215,12 +229,15 @@ private:
   /// A face of one plate colour tiled greedily and with every brick laid
   /// each way; the greedy tiling unless a one-way one sees more seams.
   FaceTiling tileEachWay(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
-                         const std::vector<const BrickType*>& types) const;
+                         const std::vector<const BrickType*>& types, const EdgeEvidenceParams& seam_params) const;
   /// Colour-free tiling of a face larger than any brick: each type alone
   /// (the smallest first), then all together; the finest tiling whose every
   /// cut is seen (a groove or a line), or none.
   FaceTiling tileBySeenSeams(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
-                             const std::vector<const BrickType*>& types) const;
+                             const std::vector<const BrickType*>& types, const EdgeEvidenceParams& seam_params) const;
+  /// The edge evidence the tiler reads `segment`'s seams with, its mean
+  /// grey level `face_grey`: see plain_seam_line_share.
+  EdgeEvidenceParams seamParamsFor(const RgbdFrame& frame, const Segment& segment, double face_grey) const;
 
   BrickCatalogue catalogue_;
   /// The catalogue's boxes lying on a side or standing on an end, as rivals

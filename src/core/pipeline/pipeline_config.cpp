@@ -98,6 +98,7 @@ ParamBindings frontEndBindings(FrontEndParams& params)
           {"edge_max_hidden_by_wall_m", &roi.edges.max_hidden_by_wall_m},
           {"resting_height_margin_m", &roi.resting_height_margin_m},
           {"tiling_min_seam_strength", &roi.tiling.min_seam_strength},
+          {"plain_seam_line_share", &roi.plain_seam_line_share},
           {"side_height_tolerance_m", &roi.sides.height_tolerance_m},
           {"side_height_tolerance_fraction", &roi.sides.height_tolerance_fraction},
           {"up_min_support_fraction", &params.up.min_support_fraction},

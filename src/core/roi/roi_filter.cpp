@@ -42,9 +42,17 @@ constexpr double kMaxUntiledWithSeenSeams = 0.15;
 constexpr double kMinSeenCutShare = 0.75;
 /// A face of one brick's size is cut into smaller bricks along lines only
 /// when each is this dark (grey levels below both sides): the rounded edges
-/// of touching plates draw lines of 24-30 on the rig in normal light, while
-/// a faint line of 10 is no proof (see test_face_tiling).
+/// of touching plates draw lines of 24-30 on the rig in normal light (faces
+/// of grey 90-100), while a faint line of 10 is no proof (see
+/// test_face_tiling)...
 constexpr double kClearSeamLineContrast = 15.0;
+/// ... or, on a dimmer face, this share of its mean grey level: shading
+/// scales with the light (in low light, grey 26, the rig's seams between
+/// reds draw lines of 6-8).
+constexpr double kClearSeamLineShare = 0.15;
+/// The least line a seam can be on any face, however dim (grey levels): the
+/// image holds whole levels.
+constexpr double kMinSeamLineContrast = 1.0;
 
 std::string describe(const std::string& what, double value, const std::string& rule, double limit)
 {
@@ -434,6 +442,8 @@ void RoiFilterParams::validate() const
   check.require(classification_tolerance_m >= 0.0, "classification_tolerance_m", "must be >= 0");
   check.require(min_fill_ratio >= 0.0 && min_fill_ratio <= 1.0, "min_fill_ratio", "must be in [0, 1]");
   check.require(resting_height_margin_m >= 0.0, "resting_height_margin_m", "must be >= 0");
+  check.require(plain_seam_line_share >= 0.0 && plain_seam_line_share < 1.0, "plain_seam_line_share",
+                "must be in [0, 1)");
   check.require(ragged_outline_px >= 0.0, "ragged_outline_px", "must be >= 0");
   check.require(std::isfinite(up_direction.norm()), "up_direction", "must be finite");
   check.require(max_tilt_deg > 0.0 && max_tilt_deg <= 90.0, "max_tilt_deg", "must be in (0, 90]");
@@ -606,8 +616,20 @@ std::optional<RoiOutcome> RoiFilter::splitMerged(const RgbdFrame& frame, const S
   return outcome;
 }
 
+EdgeEvidenceParams RoiFilter::seamParamsFor(const RgbdFrame& frame, const Segment& segment, double face_grey) const
+{
+  EdgeEvidenceParams seam_params = params_.edges;
+  const double share_of_grey = params_.plain_seam_line_share * face_grey;
+  // The uniformity is read only where the floor would move.
+  if (share_of_grey < seam_params.min_line_contrast &&
+      measureColourUniformity(frame, segment.mask, segment.bounding_box_px, params_.uniformity).uniform)
+    seam_params.min_line_contrast = std::max(share_of_grey, kMinSeamLineContrast);
+  return seam_params;
+}
+
 FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
-                                      const std::vector<const BrickType*>& types) const
+                                      const std::vector<const BrickType*>& types,
+                                      const EdgeEvidenceParams& seam_params) const
 {
   // All types together first (mixed layers); then, when it saw any seam,
   // each type alone, the smallest tops first. Among tilings whose tiles'
@@ -644,7 +666,7 @@ FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& seg
     return largest_seen_m2 == 0.0 || area(*type_sets[set].front()) <= largest_seen_m2 + 1e-9;
   };
   std::vector<FaceTiling> tilings = tileFaceEach(frame, segment, measured, type_sets, params_.dimensions.tolerance_m,
-                                                 params_.tiling, params_.edges, wanted);
+                                                 params_.tiling, seam_params, wanted);
   // Ranked by tiles drawn by seams less tiles cut where nothing is seen,
   // then by the former, then by the share left untiled.
   FaceTiling* best = nullptr;
@@ -664,7 +686,8 @@ FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& seg
 }
 
 FaceTiling RoiFilter::tileEachWay(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
-                                  const std::vector<const BrickType*>& types) const
+                                  const std::vector<const BrickType*>& types,
+                                  const EdgeEvidenceParams& seam_params) const
 {
   // The greedy tiler lays the tile its seams support best first; where
   // they are faint (a dim frame) its first tiles may lie across a row, and
@@ -673,7 +696,7 @@ FaceTiling RoiFilter::tileEachWay(const RgbdFrame& frame, const Segment& segment
   // when more of its tiles have every cut seen and it leaves no more of the
   // face untiled. Otherwise the greedy tiling stands (mixed layouts).
   std::vector<FaceTiling> tilings = tileFaceEach(
-      frame, segment, measured, {types}, params_.dimensions.tolerance_m, params_.tiling, params_.edges,
+      frame, segment, measured, {types}, params_.dimensions.tolerance_m, params_.tiling, seam_params,
       [](std::size_t, const std::vector<FaceTiling>&) { return true; },
       {TileOrientation::kEither, TileOrientation::kLongAlongAxis, TileOrientation::kLongAcrossAxis});
   if (tilings.empty()) return FaceTiling();
@@ -736,10 +759,12 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
       !probeSeamsAcross(frame, segment, measured, params_.edges.min_line_contrast, params_.edges.min_groove_m)
            .seam_possible)
     return std::nullopt;
-  FaceTiling tiling = typed_by_size && !seams_required ? tileBySeenSeams(frame, segment, measured, types)
+  const double face_grey = meanGreyLevel(frame, segment.mask, segment.bounding_box_px);
+  const EdgeEvidenceParams seam_params = seamParamsFor(frame, segment, face_grey);
+  FaceTiling tiling = typed_by_size && !seams_required ? tileBySeenSeams(frame, segment, measured, types, seam_params)
                       : typed_by_size ? tileFace(frame, segment, measured, types, params_.dimensions.tolerance_m,
-                                                 params_.tiling, params_.edges)
-                                      : tileEachWay(frame, segment, measured, types);
+                                                 params_.tiling, seam_params)
+                                      : tileEachWay(frame, segment, measured, types, seam_params);
   if (tried) *tried = tiling;
   if (tiling.tiles.size() < 2) return std::nullopt;
   // Without colour every cut must be seen: a cut made from sizes alone
@@ -754,8 +779,9 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   // and a tile whose cut is only a line on a printed face stays partial.
   if (typed_by_size && (tiling.cuts == 0 || tiling.seen_cuts == 0)) return std::nullopt;
   const bool cuts_grooved = tiling.cuts > 0 && tiling.grooved_cuts == tiling.cuts;
+  const double clear_line = std::min(kClearSeamLineContrast, kClearSeamLineShare * face_grey);
   const bool cuts_lined = tiling.cuts > 0 && tiling.seen_cuts == tiling.cuts &&
-                          (!seams_required || tiling.weakest_cut_line >= kClearSeamLineContrast);
+                          (!seams_required || tiling.weakest_cut_line >= clear_line);
   if (seams_required && !cuts_grooved && !cuts_lined) return std::nullopt;
   // Read only where it can decide something (it reads every tile).
   const std::vector<char> plain = typed_by_size && (!seams_required || !cuts_grooved)
@@ -784,7 +810,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
                  "its size cannot tell its type";
         return;
       }
-    reason = measure(frame, part, context, &tile_timings[k], candidate);
+    reason = measure(frame, part, context, &tile_timings[k], candidate, &seam_params);
     if (!reason) reason = assignType(frame, context, part, candidate);
     candidate.typed_by_colour = !typed_by_size;  // the tiler's type is a size
     // Without colour, a brick cut off by the border or an occluder could be
@@ -817,7 +843,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
 
 std::optional<std::string> RoiFilter::measure(const RgbdFrame& frame, const Segment& segment,
                                               const FrameContext& context, CloudProcessingTimings* cloud_timings,
-                                              BrickCandidate& candidate) const
+                                              BrickCandidate& candidate, const EdgeEvidenceParams* edges) const
 {
   if (static_cast<int>(segment.pixel_indices.size()) < params_.min_points)
     return describe("only", static_cast<double>(segment.pixel_indices.size()), "depth pixels, need",
@@ -858,11 +884,11 @@ std::optional<std::string> RoiFilter::measure(const RgbdFrame& frame, const Segm
   // near the extended plane, or flying pixels, are dropped here).
   candidate.points = planeInliers(*candidate.points, candidate.plane, params_.plane);
   candidate.obb = computeOrientedBoundingBox(*candidate.points);
-  return fitOutline(frame, segment, candidate);
+  return fitOutline(frame, segment, edges ? *edges : params_.edges, candidate);
 }
 
 std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const Segment& segment,
-                                                 BrickCandidate& candidate) const
+                                                 const EdgeEvidenceParams& edges, BrickCandidate& candidate) const
 {
   // One blob for a segment from a single component; several for the pieces
   // of a face merged across an occluder.
@@ -897,7 +923,7 @@ std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const S
   candidate.t2_m = candidate.centroid_m - 0.25 * candidate.length_m * long_axis;
   candidate.t1_px = camera.project(candidate.t1_m);
   candidate.t2_px = camera.project(candidate.t2_m);
-  candidate.edge_kinds = classifyEdges(frame, candidate, params_.edges, catalogue_, params_.resting_height_margin_m);
+  candidate.edge_kinds = classifyEdges(frame, candidate, edges, catalogue_, params_.resting_height_margin_m);
   for (int k = 0; k < 4; ++k)
     candidate.edge_truncated[k] =
         candidate.edge_kinds[k] == EdgeKind::kImageBorder || candidate.edge_kinds[k] == EdgeKind::kOcclusion;
