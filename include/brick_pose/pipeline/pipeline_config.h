@@ -85,7 +85,7 @@ BrickCatalogue catalogueFrom(const ParamLookup& lookup);
 /// `front_end_threads`;
 /// the top-face check: `max_tilt_deg`, `edge_min_step_m`, `edge_min_groove_m`,
 /// `edge_min_line_contrast`, `edge_seam_noise_factor`, `edge_max_overrun_m`, `tiling_min_seam_strength`,
-/// `plain_seam_line_share`,
+/// `plain_seam_line_share`, `confirm_seams_along_lines`,
 /// `side_height_tolerance_m`, `side_height_tolerance_fraction`,
 /// `up_min_support_fraction`.
 /// for colour_free: `colour_free_cell_px`, `colour_free_estimate_noise`,

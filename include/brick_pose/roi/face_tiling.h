@@ -57,6 +57,12 @@ struct FaceTilingParams
   double min_visible_fraction = 0.4;
   /// Largest number of tiles per segment.
   int max_tiles = 48;
+  /// A cut seen (min_seam_strength) but too short to be confirmed alone is
+  /// confirmed when the cuts continuing it on the same line, each seen on
+  /// its own, are confirmed read together: one seam runs past several
+  /// bricks of a grid. Only on plain faces (the ROI filter sets it per
+  /// face): on a printed one, lines run along rows of print and tape.
+  bool confirm_along_lines = false;
   /// Threads reading a face's seam evidence (one per direction of its
   /// grid; the front end sets its own worker_threads).
   int worker_threads = 1;

@@ -83,6 +83,10 @@ struct RoiFilterParams
   /// are as faint in proportion. Printed faces keep the absolute floor
   /// (their lines are print). 0 keeps edges.min_line_contrast everywhere.
   double plain_seam_line_share = 0.06;
+  /// On a plain face, a cut seen but too short to confirm alone is
+  /// confirmed with the cuts continuing it on one line (see
+  /// FaceTilingParams::confirm_along_lines).
+  bool confirm_seams_along_lines = true;
   PlaneFitParams plane;
   QuadFitParams quad;
   /// The bricks a merged face is cut into are measured on this many threads
@@ -165,7 +169,7 @@ public:
 private:
   /// Points, plane, OBB and outline geometry; the reason when it fails.
   /// `edges` (optional) replaces params_.edges in reading its edges: a
-  /// tile's, read as its tiling read the seams (see seamParamsFor).
+  /// tile's, read as its tiling read the seams (see seamReadingFor).
   std::optional<std::string> measure(const RgbdFrame& frame, const Segment& segment, const FrameContext& context,
                                      CloudProcessingTimings* cloud_timings, BrickCandidate& candidate,
                                      const EdgeEvidenceParams* edges = nullptr) const;
@@ -216,6 +220,14 @@ private:
   /// Whether most of the surface around the segment's outline lies below
   /// its plane (see raised_layer.h).
   bool standsUpFromItsSurroundings(const RgbdFrame& frame, const Segment& segment, const PlaneFit& plane) const;
+  /// The edge evidence and tiling settings a merged face's seams are read
+  /// with (see seamReadingFor).
+  struct SeamReading
+  {
+    EdgeEvidenceParams edges;
+    FaceTilingParams tiling;
+  };
+
   /// The candidates and rejections of tiling a measured segment; empty
   /// when no tiling of two or more bricks was found (or, with
   /// `seams_required`, when any cut lacks a seen seam).
@@ -229,15 +241,17 @@ private:
   /// A face of one plate colour tiled greedily and with every brick laid
   /// each way; the greedy tiling unless a one-way one sees more seams.
   FaceTiling tileEachWay(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
-                         const std::vector<const BrickType*>& types, const EdgeEvidenceParams& seam_params) const;
+                         const std::vector<const BrickType*>& types, const SeamReading& seams) const;
   /// Colour-free tiling of a face larger than any brick: each type alone
   /// (the smallest first), then all together; the finest tiling whose every
   /// cut is seen (a groove or a line), or none.
   FaceTiling tileBySeenSeams(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
-                             const std::vector<const BrickType*>& types, const EdgeEvidenceParams& seam_params) const;
-  /// The edge evidence the tiler reads `segment`'s seams with, its mean
-  /// grey level `face_grey`: see plain_seam_line_share.
-  EdgeEvidenceParams seamParamsFor(const RgbdFrame& frame, const Segment& segment, double face_grey) const;
+                             const std::vector<const BrickType*>& types, const SeamReading& seams) const;
+  /// How the tiler reads `segment`'s seams, its mean grey level
+  /// `face_grey`: on a plain face a line is a seam, read against its light
+  /// (plain_seam_line_share) and confirmed along the lines cuts share
+  /// (FaceTilingParams::confirm_along_lines); elsewhere params_ as they are.
+  SeamReading seamReadingFor(const RgbdFrame& frame, const Segment& segment, double face_grey) const;
 
   BrickCatalogue catalogue_;
   /// The catalogue's boxes lying on a side or standing on an end, as rivals

@@ -1170,6 +1170,9 @@ SeamScore tiltedSeam(const RgbdFrame& frame, const PlaneFit& plane, const Eigen:
 struct CutReading
 {
   bool confirmed = true;
+  /// Every read a seam on its own (min_seam_strength standard errors and
+  /// the floors): one that only falls short of the confirmation.
+  bool seen = true;
   double line_contrast = std::numeric_limits<double>::infinity();
 };
 
@@ -1178,7 +1181,7 @@ struct CutReading
 /// with one along all of it, is read whole, corner to corner.
 CutReading readCut(const RgbdFrame& frame, const PlaneFit& plane, const PlaneGrid& grid, const CellRect& rect, int k,
                    const std::vector<std::pair<int, int>>& stretches, const std::array<Eigen::Vector3d, 4>& corners_m,
-                   const EdgeEvidenceParams& evidence_params, double confirmed_strength)
+                   const EdgeEvidenceParams& evidence_params, double seen_strength, double confirmed_strength)
 {
   const bool constant_s = k % 2 == 0;
   const int along_from = std::max(0, constant_s ? rect.j0 : rect.i0);
@@ -1202,6 +1205,7 @@ CutReading readCut(const RgbdFrame& frame, const PlaneFit& plane, const PlaneGri
   {
     const SeamScore seam = tiltedSeam(frame, plane, a_px, b_px, evidence_params, confirmed_strength);
     reading.confirmed = reading.confirmed && confirmsCut(seam, confirmed_strength);
+    reading.seen = reading.seen && seam.seen && seam.strength >= seen_strength;
     reading.line_contrast = std::min(reading.line_contrast, seam.line_contrast);
   }
   return reading;
@@ -1223,6 +1227,79 @@ Eigen::Vector3d gridAxis(const RgbdFrame& frame, const Segment& segment, const B
   return std::abs(off_rad) > kMaxQuadOffOutlineRad ? outline->direction : quad_axis;
 }
 
+/// Confirms cuts seen but too short to confirm alone together with the cuts
+/// that continue them on the same line: in a grid of touching bricks one
+/// seam runs past several of them, while a brick's width holds too few
+/// pixels in a low light (about 45 at 640x480) for its own stretch to reach
+/// the confirmation. Each stretch must be seen on its own (`seen`): a row
+/// laid in bond, whose seams do not line up, gains nothing, and a strong
+/// seam beside it does not carry a stretch where nothing is.
+void confirmAlongLines(const RgbdFrame& frame, const PlaneFit& plane, const PlaneGrid& grid,
+                       const std::vector<Tiler::Placed>& placed, const std::vector<std::array<bool, 4>>& seen,
+                       const EdgeEvidenceParams& evidence_params, double confirmed_strength, FaceTiling& tiling)
+{
+  struct Piece
+  {
+    std::size_t tile;
+    int k, line, from, to;
+  };
+  // Cuts by the direction they run in (constant s or t), then by line:
+  // each tile snaps its edge to the best line on its own, so the stretches
+  // of one seam lie on lines a cell apart.
+  std::map<bool, std::vector<Piece>> by_direction;
+  for (std::size_t a = 0; a < placed.size(); ++a)
+    for (int k = 0; k < 4; ++k)
+    {
+      if (!tiling.tiles[a].cut[k] || !seen[a][k]) continue;
+      const CellRect& r = placed[a].rect;
+      const bool constant_s = k % 2 == 0;
+      by_direction[constant_s].push_back({a, k, r.edgeLine(k), std::max(0, constant_s ? r.j0 : r.i0),
+                                          std::min(constant_s ? grid.ny() : grid.nx(), constant_s ? r.j1 : r.i1)});
+    }
+  std::vector<std::pair<bool, std::vector<Piece>>> lines;
+  for (auto& [constant_s, pieces] : by_direction)
+  {
+    std::sort(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) { return a.line < b.line; });
+    for (const Piece& piece : pieces)
+      if (lines.empty() || lines.back().first != constant_s || piece.line > lines.back().second.front().line + 1)
+        lines.push_back({constant_s, {piece}});
+      else
+        lines.back().second.push_back(piece);
+  }
+  for (auto& [constant_s, pieces] : lines)
+  {
+    std::sort(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) { return a.from < b.from; });
+    int line_sum = 0;
+    for (const Piece& piece : pieces) line_sum += piece.line;
+    const int line = roundToInt(static_cast<double>(line_sum) / pieces.size());
+    auto pixelAt = [&, cs = constant_s](int along) {
+      return frame.camera.project(cs ? grid.point(line, along) : grid.point(along, line));
+    };
+    for (std::size_t first = 0; first < pieces.size();)
+    {
+      // A run of pieces each reaching the one before (within a cell).
+      std::size_t last = first;
+      int run_to = pieces[first].to, longest = pieces[first].to - pieces[first].from;
+      while (last + 1 < pieces.size() && pieces[last + 1].from <= run_to + 1)
+      {
+        ++last;
+        run_to = std::max(run_to, pieces[last].to);
+        longest = std::max(longest, pieces[last].to - pieces[last].from);
+      }
+      const bool longer_than_any = run_to - pieces[first].from > longest + 1;
+      const bool any_unconfirmed = std::any_of(pieces.begin() + first, pieces.begin() + last + 1, [&](const Piece& p) {
+        return !tiling.tiles[p.tile].seam_seen[p.k];
+      });
+      if (longer_than_any && any_unconfirmed &&
+          confirmsCut(tiltedSeam(frame, plane, pixelAt(pieces[first].from), pixelAt(run_to), evidence_params,
+                                 confirmed_strength),
+                      confirmed_strength))
+        for (std::size_t n = first; n <= last; ++n) tiling.tiles[pieces[n].tile].seam_seen[pieces[n].k] = true;
+      first = last + 1;
+    }
+  }
+}
+
 /// The placed tiles as a FaceTiling: corners, cuts and the seams confirmed
 /// along each cut (the tiles' pixels are cut by cutTileSegments).
 FaceTiling describeTiling(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
@@ -1232,6 +1309,9 @@ FaceTiling describeTiling(const RgbdFrame& frame, const Segment& segment, const 
   FaceTiling tiling;
   tiling.untiled_fraction = static_cast<double>(grid.freeCount()) / segment_cells;
   tiling.tiles.reserve(placed.size());
+  std::vector<std::array<bool, 4>> seen(placed.size(), {{false, false, false, false}});
+  std::vector<std::array<bool, 4>> grooves(placed.size());
+  const double confirmed_strength = kConfirmedSeamFactor * params.min_seam_strength;
   for (const Tiler::Placed& tile : placed)
   {
     FaceTile face;
@@ -1252,19 +1332,25 @@ FaceTiling describeTiling(const RgbdFrame& frame, const Segment& segment, const 
       // test along the cut, whose standard error comes from the scatter
       // along the line, and only where a neighbour lies beyond the cut.
       const CutReading cut = readCut(frame, measured.plane, grid, r, k, cutNeighbours(grid, r, k), face.corners_m,
-                                     evidence_params, kConfirmedSeamFactor * params.min_seam_strength);
+                                     evidence_params, params.min_seam_strength, confirmed_strength);
       face.seam_seen[k] = cut.confirmed;
+      seen[tiling.tiles.size()][k] = cut.seen;
       groove[k] = groove[k] && cut.confirmed;
       tiling.weakest_cut_line = std::min(tiling.weakest_cut_line, cut.line_contrast);
     }
-    for (int k = 0; k < 4; ++k)
-    {
-      tiling.cuts += face.cut[k] ? 1 : 0;
-      tiling.seen_cuts += face.cut[k] && face.seam_seen[k] ? 1 : 0;
-      tiling.grooved_cuts += face.cut[k] && groove[k] ? 1 : 0;
-    }
+    grooves[tiling.tiles.size()] = groove;
     tiling.tiles.push_back(std::move(face));
   }
+  if (params.confirm_along_lines)
+    confirmAlongLines(frame, measured.plane, grid, placed, seen, evidence_params, confirmed_strength, tiling);
+  for (std::size_t a = 0; a < tiling.tiles.size(); ++a)
+    for (int k = 0; k < 4; ++k)
+    {
+      const FaceTile& face = tiling.tiles[a];
+      tiling.cuts += face.cut[k] ? 1 : 0;
+      tiling.seen_cuts += face.cut[k] && face.seam_seen[k] ? 1 : 0;
+      tiling.grooved_cuts += face.cut[k] && grooves[a][k] ? 1 : 0;
+    }
   markSharedCuts(placed, tiling);
   return tiling;
 }

@@ -616,20 +616,23 @@ std::optional<RoiOutcome> RoiFilter::splitMerged(const RgbdFrame& frame, const S
   return outcome;
 }
 
-EdgeEvidenceParams RoiFilter::seamParamsFor(const RgbdFrame& frame, const Segment& segment, double face_grey) const
+RoiFilter::SeamReading RoiFilter::seamReadingFor(const RgbdFrame& frame, const Segment& segment,
+                                                 double face_grey) const
 {
-  EdgeEvidenceParams seam_params = params_.edges;
+  SeamReading reading{params_.edges, params_.tiling};
+  if (!measureColourUniformity(frame, segment.mask, segment.bounding_box_px, params_.uniformity).uniform)
+    return reading;
+  // A plain face: its lines are seams.
+  reading.tiling.confirm_along_lines = params_.confirm_seams_along_lines;
   const double share_of_grey = params_.plain_seam_line_share * face_grey;
-  // The uniformity is read only where the floor would move.
-  if (share_of_grey < seam_params.min_line_contrast &&
-      measureColourUniformity(frame, segment.mask, segment.bounding_box_px, params_.uniformity).uniform)
-    seam_params.min_line_contrast = std::max(share_of_grey, kMinSeamLineContrast);
-  return seam_params;
+  if (share_of_grey < reading.edges.min_line_contrast)
+    reading.edges.min_line_contrast = std::max(share_of_grey, kMinSeamLineContrast);
+  return reading;
 }
 
 FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
                                       const std::vector<const BrickType*>& types,
-                                      const EdgeEvidenceParams& seam_params) const
+                                      const SeamReading& seams) const
 {
   // All types together first (mixed layers); then, when it saw any seam,
   // each type alone, the smallest tops first. Among tilings whose tiles'
@@ -666,7 +669,7 @@ FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& seg
     return largest_seen_m2 == 0.0 || area(*type_sets[set].front()) <= largest_seen_m2 + 1e-9;
   };
   std::vector<FaceTiling> tilings = tileFaceEach(frame, segment, measured, type_sets, params_.dimensions.tolerance_m,
-                                                 params_.tiling, seam_params, wanted);
+                                                 seams.tiling, seams.edges, wanted);
   // Ranked by tiles drawn by seams less tiles cut where nothing is seen,
   // then by the former, then by the share left untiled.
   FaceTiling* best = nullptr;
@@ -687,7 +690,7 @@ FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& seg
 
 FaceTiling RoiFilter::tileEachWay(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
                                   const std::vector<const BrickType*>& types,
-                                  const EdgeEvidenceParams& seam_params) const
+                                  const SeamReading& seams) const
 {
   // The greedy tiler lays the tile its seams support best first; where
   // they are faint (a dim frame) its first tiles may lie across a row, and
@@ -696,7 +699,7 @@ FaceTiling RoiFilter::tileEachWay(const RgbdFrame& frame, const Segment& segment
   // when more of its tiles have every cut seen and it leaves no more of the
   // face untiled. Otherwise the greedy tiling stands (mixed layouts).
   std::vector<FaceTiling> tilings = tileFaceEach(
-      frame, segment, measured, {types}, params_.dimensions.tolerance_m, params_.tiling, seam_params,
+      frame, segment, measured, {types}, params_.dimensions.tolerance_m, seams.tiling, seams.edges,
       [](std::size_t, const std::vector<FaceTiling>&) { return true; },
       {TileOrientation::kEither, TileOrientation::kLongAlongAxis, TileOrientation::kLongAcrossAxis});
   if (tilings.empty()) return FaceTiling();
@@ -760,11 +763,11 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
            .seam_possible)
     return std::nullopt;
   const double face_grey = meanGreyLevel(frame, segment.mask, segment.bounding_box_px);
-  const EdgeEvidenceParams seam_params = seamParamsFor(frame, segment, face_grey);
-  FaceTiling tiling = typed_by_size && !seams_required ? tileBySeenSeams(frame, segment, measured, types, seam_params)
+  const SeamReading seams = seamReadingFor(frame, segment, face_grey);
+  FaceTiling tiling = typed_by_size && !seams_required ? tileBySeenSeams(frame, segment, measured, types, seams)
                       : typed_by_size ? tileFace(frame, segment, measured, types, params_.dimensions.tolerance_m,
-                                                 params_.tiling, seam_params)
-                                      : tileEachWay(frame, segment, measured, types, seam_params);
+                                                 seams.tiling, seams.edges)
+                                      : tileEachWay(frame, segment, measured, types, seams);
   if (tried) *tried = tiling;
   if (tiling.tiles.size() < 2) return std::nullopt;
   // Without colour every cut must be seen: a cut made from sizes alone
@@ -810,7 +813,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
                  "its size cannot tell its type";
         return;
       }
-    reason = measure(frame, part, context, &tile_timings[k], candidate, &seam_params);
+    reason = measure(frame, part, context, &tile_timings[k], candidate, &seams.edges);
     if (!reason) reason = assignType(frame, context, part, candidate);
     candidate.typed_by_colour = !typed_by_size;  // the tiler's type is a size
     // Without colour, a brick cut off by the border or an occluder could be
