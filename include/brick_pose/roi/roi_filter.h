@@ -247,11 +247,11 @@ private:
   /// cut is seen (a groove or a line), or none.
   FaceTiling tileBySeenSeams(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
                              const std::vector<const BrickType*>& types, const SeamReading& seams) const;
-  /// How the tiler reads `segment`'s seams, its mean grey level
-  /// `face_grey`: on a plain face a line is a seam, read against its light
-  /// (plain_seam_line_share) and confirmed along the lines cuts share
+  /// How the tiler reads a face's seams, given its uniformity and mean grey
+  /// level `face_grey`: on a plain face a line is a seam, read against its
+  /// light (plain_seam_line_share) and confirmed along the lines cuts share
   /// (FaceTilingParams::confirm_along_lines); elsewhere params_ as they are.
-  SeamReading seamReadingFor(const RgbdFrame& frame, const Segment& segment, double face_grey) const;
+  SeamReading seamReadingFor(const ColourUniformity& face_uniformity, double face_grey) const;
 
   BrickCatalogue catalogue_;
   /// The catalogue's boxes lying on a side or standing on an end, as rivals

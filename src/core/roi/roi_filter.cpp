@@ -212,14 +212,13 @@ double strongestCompositionSeam(const RgbdFrame& frame, const PlaneFit& plane, c
 }
 
 /// Per tile, whether it is plain (see colour_uniformity.h), and so is the
-/// whole face by its scatter (its seams are outliers, not print): a
-/// plain-looking patch of a printed box, a white strip between two prints,
-/// is no plate.
-std::vector<char> plainTiles(const RgbdFrame& frame, const Segment& segment, const FaceTiling& tiling,
+/// whole face (`face`, its uniformity) by its scatter (its seams are
+/// outliers, not print): a plain-looking patch of a printed box, a white
+/// strip between two prints, is no plate.
+std::vector<char> plainTiles(const RgbdFrame& frame, const ColourUniformity& face, const FaceTiling& tiling,
                              const ColourUniformityParams& params)
 {
   std::vector<char> plain(tiling.tiles.size(), 0);
-  const ColourUniformity face = measureColourUniformity(frame, segment.mask, segment.bounding_box_px, params);
   if (face.samples == 0 || face.sigma_grey > params.max_sigma_grey) return plain;
   for (std::size_t k = 0; k < tiling.tiles.size(); ++k)
   {
@@ -616,12 +615,10 @@ std::optional<RoiOutcome> RoiFilter::splitMerged(const RgbdFrame& frame, const S
   return outcome;
 }
 
-RoiFilter::SeamReading RoiFilter::seamReadingFor(const RgbdFrame& frame, const Segment& segment,
-                                                 double face_grey) const
+RoiFilter::SeamReading RoiFilter::seamReadingFor(const ColourUniformity& face_uniformity, double face_grey) const
 {
   SeamReading reading{params_.edges, params_.tiling};
-  if (!measureColourUniformity(frame, segment.mask, segment.bounding_box_px, params_.uniformity).uniform)
-    return reading;
+  if (!face_uniformity.uniform) return reading;
   // A plain face: its lines are seams.
   reading.tiling.confirm_along_lines = params_.confirm_seams_along_lines;
   const double share_of_grey = params_.plain_seam_line_share * face_grey;
@@ -762,8 +759,11 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
       !probeSeamsAcross(frame, segment, measured, params_.edges.min_line_contrast, params_.edges.min_groove_m)
            .seam_possible)
     return std::nullopt;
+  // Read once: the seam reading and the tiles' plainness both start from it.
+  const ColourUniformity face_uniformity =
+      measureColourUniformity(frame, segment.mask, segment.bounding_box_px, params_.uniformity);
   const double face_grey = meanGreyLevel(frame, segment.mask, segment.bounding_box_px);
-  const SeamReading seams = seamReadingFor(frame, segment, face_grey);
+  const SeamReading seams = seamReadingFor(face_uniformity, face_grey);
   FaceTiling tiling = typed_by_size && !seams_required ? tileBySeenSeams(frame, segment, measured, types, seams)
                       : typed_by_size ? tileFace(frame, segment, measured, types, params_.dimensions.tolerance_m,
                                                  seams.tiling, seams.edges)
@@ -788,7 +788,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   if (seams_required && !cuts_grooved && !cuts_lined) return std::nullopt;
   // Read only where it can decide something (it reads every tile).
   const std::vector<char> plain = typed_by_size && (!seams_required || !cuts_grooved)
-                                      ? plainTiles(frame, segment, tiling, params_.uniformity)
+                                      ? plainTiles(frame, face_uniformity, tiling, params_.uniformity)
                                       : std::vector<char>(tiling.tiles.size(), 0);
   const bool all_plain = std::all_of(plain.begin(), plain.end(), [](char p) { return p != 0; });
   if (seams_required && !cuts_grooved && !all_plain) return std::nullopt;
