@@ -25,6 +25,8 @@ struct RenderedFrame
   sim::Scene scene;
   sim::SyntheticFrame synthetic;
   Eigen::Vector3d up_in_camera = Eigen::Vector3d::UnitZ();
+  /// The ground the scene stands on (world z = 0) in the camera frame.
+  Eigen::Vector4d ground_in_camera = Eigen::Vector4d::Zero();
 };
 
 RenderedFrame render(const sim::SceneGenerator& generator, const SceneClass& scene_class, const FrameSpec& spec,
@@ -35,6 +37,8 @@ RenderedFrame render(const sim::SceneGenerator& generator, const SceneClass& sce
   frame.synthetic =
       sim::SyntheticRig(camera, sensorFor(scene_class, spec.lighting)).render(frame.scene, spec.seed);
   frame.up_in_camera = frame.scene.world_T_camera.linear().transpose() * Eigen::Vector3d::UnitZ();
+  // A camera-frame point p is at world height up . p + (camera's height).
+  frame.ground_in_camera << frame.up_in_camera, frame.scene.world_T_camera.translation().z();
   return frame;
 }
 
@@ -103,7 +107,7 @@ RigResults runRig(const std::vector<BrickCatalogue>& catalogues, const std::vect
         if (m == 0 && resolutions[r].legacy) results.frame_build_ms.push_back(millisecondsSince(build_start));
         // A front end per frame: the up direction is the frame's. Building
         // one is cheap next to processing a frame.
-        const FrontEnd front_end(catalogues[spec.scene_class], frontEndParamsFor(modes[m], rendered.up_in_camera));
+        const FrontEnd front_end(catalogues[spec.scene_class], frontEndParamsFor(modes[m], rendered.up_in_camera, rendered.ground_in_camera));
         const double cpu_start = bench::processCpuMs();
         const FrontEndResult result = front_end.process(frame);
         const double cpu_ms = bench::processCpuMs() - cpu_start;

@@ -139,11 +139,13 @@ const ModeSpec* headlineColourFreeMode(const std::vector<ModeSpec>& modes)
   return fallback;
 }
 
-FrontEndParams frontEndParamsFor(const ModeSpec& mode, const Eigen::Vector3d& up_in_camera)
+FrontEndParams frontEndParamsFor(const ModeSpec& mode, const Eigen::Vector3d& up_in_camera,
+                                 const Eigen::Vector4d& support_plane)
 {
   FrontEndParams params;
   params.mode = *mode.mode;
   if (mode.colour_free) params.roi.up_direction = up_in_camera;
+  if (mode.colour_free) params.roi.support_plane = support_plane;
   return params;
 }
 

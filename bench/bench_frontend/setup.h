@@ -106,9 +106,12 @@ const ModeSpec* headlineColourFreeMode(const std::vector<ModeSpec>& modes);
 
 /// Front-end parameters of `mode`. Colour-free modes get the scene's up
 /// direction (a robot knows gravity from tf: without it a brick's long side
-/// faces have the size of a top face; zero leaves it unset); hsv runs with
-/// its defaults, as the earlier benchmark did.
-FrontEndParams frontEndParamsFor(const ModeSpec& mode, const Eigen::Vector3d& up_in_camera);
+/// faces have the size of a top face; zero leaves it unset) and, when
+/// known, the plane the pile stands on (`support_plane`, as the nodelet's
+/// support_frame gives it; zero leaves it unset); hsv runs with its
+/// defaults, as the earlier benchmark did.
+FrontEndParams frontEndParamsFor(const ModeSpec& mode, const Eigen::Vector3d& up_in_camera,
+                                 const Eigen::Vector4d& support_plane = Eigen::Vector4d::Zero());
 
 /// One frame of the run: which class, its seed and lighting.
 struct FrameSpec

@@ -3,7 +3,11 @@
 // remappable; image_transport for the images), validates them and publishes
 // one FrameMessage on `frame`, in-process. With ~up_frame set (e.g.
 // base_link, whose +z points up), each frame carries "up" in the camera
-// frame from tf, for the front end's top-face check.
+// frame from tf, for the front end's top-face check. With ~support_frame set
+// (a frame whose xy-plane the pile stands on: a pallet's deck, a table),
+// each frame carries that plane too (and up, its +z, when up_frame is not
+// set): colour-free, a face's height above it tells boxes that share a top
+// apart.
 //
 // Depth 16UC1 (mm) and 32FC1 (m) are accepted. A bad frame (wrong encoding,
 // size mismatch, unusable camera_info, no valid depth, stamp going backwards)
@@ -26,6 +30,7 @@
 #include "brick_pose/common/errors.h"
 #include "brick_pose/frame/frame_builder.h"
 #include "brick_pose/frame/stamp_order.h"
+#include "brick_pose/roi/up_direction.h"
 #include "brick_pose/ros/camera_topics.h"
 #include "brick_pose/ros/conversions.h"
 #include "brick_pose/ros/stage_nodelet.h"
@@ -69,6 +74,7 @@ private:
     // stage's node handle, so the stage's remappings apply to its topics.
     const std::string camera_ns = lookup("camera_ns").value_or("/camera");
     up_frame_ = lookup("up_frame").value_or("");
+    support_frame_ = lookup("support_frame").value_or("");
     const int queue_size = std::max(stageParams().queue_size, 5);  // the synchroniser needs some slack
     ros::NodeHandle camera_node(node(), camera_ns);
     camera_transport_ = std::make_unique<image_transport::ImageTransport>(camera_node);
@@ -79,7 +85,7 @@ private:
         SyncPolicy(queue_size), color_subscriber_, depth_subscriber_, info_subscriber_);
     synchronizer_->registerCallback(&RgbdIngestionNodelet::onFrame, this);
     frame_publisher_ = advertiseOutput<FrameMessage>("frame");
-    if (!up_frame_.empty())
+    if (!up_frame_.empty() || !support_frame_.empty())
     {
       tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
       tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_);
@@ -87,8 +93,12 @@ private:
     watchInputs(camera_node);
     NODELET_INFO("ingesting %s/{%s, %s, %s}%s", camera_node.getNamespace().c_str(), CameraTopics::kColorImage,
                  CameraTopics::kDepthImage, CameraTopics::kColorInfo,
-                 up_frame_.empty() ? "; no up_frame: up is inferred from the scene"
-                                   : ("; up is +z of " + up_frame_).c_str());
+                 (up_frame_.empty() && support_frame_.empty() ? "; no up_frame: up is inferred from the scene"
+                  : !up_frame_.empty()                        ? "; up is +z of " + up_frame_
+                                                              : "; up is +z of " + support_frame_)
+                     .c_str());
+    if (!support_frame_.empty())
+      NODELET_INFO("the pile stands on the xy-plane of %s (support_frame)", support_frame_.c_str());
   }
 
   /// The synchroniser is silent when one input is missing; these light
@@ -156,6 +166,9 @@ private:
     message->frame = makeRgbdFrame(viewOf(color), viewOf(depth), ros_conversions::fromCameraInfo(info), header);
     admitStamp(color.header.stamp);
     message->frame.up_in_camera = upInCamera(color.header);
+    message->frame.support_in_camera = supportInCamera(color.header);
+    if (!message->frame.up_in_camera && message->frame.support_in_camera)
+      message->frame.up_in_camera = message->frame.support_in_camera->head<3>();
     return message;
   }
 
@@ -183,18 +196,40 @@ private:
   /// transform when none at that stamp); nothing without up_frame or tf.
   std::optional<Eigen::Vector3d> upInCamera(const std_msgs::Header& header)
   {
-    if (!tf_buffer_) return std::nullopt;
+    const std::optional<Eigen::Isometry3d> camera_T_up = cameraTransform(header, up_frame_, "up_frame");
+    if (!camera_T_up) return std::nullopt;
+    return camera_T_up->linear().col(2);
+  }
+
+  /// The xy-plane of support_frame in the camera frame, as (n, d) with
+  /// n . p + d = 0 and n its +z; nothing without support_frame or tf.
+  std::optional<Eigen::Vector4d> supportInCamera(const std_msgs::Header& header)
+  {
+    const std::optional<Eigen::Isometry3d> camera_T_support =
+        cameraTransform(header, support_frame_, "support_frame");
+    if (!camera_T_support) return std::nullopt;
+    return xyPlaneInCamera(*camera_T_support);
+  }
+
+  /// The pose of `target` in the camera frame at the frame's stamp (the
+  /// latest transform when none at that stamp); nothing when `target` is
+  /// empty or tf has no transform (a throttled warning naming `param`).
+  std::optional<Eigen::Isometry3d> cameraTransform(const std_msgs::Header& header, const std::string& target,
+                                                   const char* param)
+  {
+    if (!tf_buffer_ || target.empty()) return std::nullopt;
     try
     {
-      const ros::Time stamp = tf_buffer_->canTransform(header.frame_id, up_frame_, header.stamp) ? header.stamp
-                                                                                                : ros::Time(0);
-      const Eigen::Isometry3d camera_T_up = tf2::transformToEigen(tf_buffer_->lookupTransform(header.frame_id, up_frame_, stamp));
-      return camera_T_up.linear().col(2);
+      const ros::Time stamp =
+          tf_buffer_->canTransform(header.frame_id, target, header.stamp) ? header.stamp : ros::Time(0);
+      return tf2::transformToEigen(tf_buffer_->lookupTransform(header.frame_id, target, stamp));
     }
     catch (const tf2::TransformException& e)
     {
-      NODELET_WARN_THROTTLE(10.0, "no tf from %s to up_frame %s (%s): up is inferred from the scene",
-                            header.frame_id.c_str(), up_frame_.c_str(), e.what());
+      NODELET_WARN_THROTTLE(10.0, "no tf from %s to %s %s (%s): %s", header.frame_id.c_str(), param, target.c_str(),
+                            e.what(),
+                            std::string(param) == "up_frame" ? "up is inferred from the scene"
+                                                             : "boxes are not typed by their height above it");
       return std::nullopt;
     }
   }
@@ -213,6 +248,7 @@ private:
   std::uint64_t next_sequence_ = 0;
   const char* rejection_category_ = "invalid input";
   std::string up_frame_;
+  std::string support_frame_;
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   std::string camera_ns_;

@@ -80,6 +80,36 @@ TEST(UpDirection, TheGroundIsTheSupportingPlane)
   EXPECT_NEAR(up.heightAboveSupport(bricks.world_T_camera.inverse() * Eigen::Vector3d(0.0, 0.0, 0.2)), 0.2, 0.02);
 }
 
+TEST(UpDirection, AGivenSupportIsUpAndThePlaneThePileStandsOn)
+{
+  // A deck 0.14 m above the ground, seen by the scene's camera.
+  const sim::Scene bricks = scene({{"red", Eigen::Vector3d(0.0, 0.0, 0.2), 0.0}}, 55.0);
+  Eigen::Isometry3d world_T_deck = Eigen::Isometry3d::Identity();
+  world_T_deck.translation() = Eigen::Vector3d(0.3, -0.2, 0.14);
+  world_T_deck.rotate(Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()));  // its yaw is no matter
+  const Eigen::Vector4d deck = xyPlaneInCamera(bricks.world_T_camera.inverse() * world_T_deck);
+  const UpDirection given = givenSupport(deck);
+  ASSERT_TRUE(given.known());
+  EXPECT_EQ(given.source, UpSource::kGiven);
+  EXPECT_TRUE(given.support_given);
+  EXPECT_LT(angleDeg(given.up, worldUpInCamera(bricks)), 1e-6);
+  // The brick's top, 0.2 m above the ground, is 0.06 m above the deck.
+  const Eigen::Vector3d top_in_camera = bricks.world_T_camera.inverse() * Eigen::Vector3d(0.0, 0.0, 0.2);
+  EXPECT_NEAR(given.heightAboveSupport(top_in_camera), 0.06, 1e-9);
+  // Scaling the plane changes nothing; a plane without a normal is none.
+  EXPECT_NEAR(givenSupport(3.0 * deck).heightAboveSupport(top_in_camera), 0.06, 1e-9);
+  EXPECT_FALSE(givenSupport(Eigen::Vector4d(0.0, 0.0, 0.0, 1.0)).known());
+  EXPECT_FALSE(givenSupport(Eigen::Vector4d(std::nan(""), 0.0, 1.0, 1.0)).known());
+  // Up from tf stays; the plane is the given one.
+  UpDirection from_tf;
+  from_tf.up = Eigen::Vector3d::UnitY();
+  from_tf.source = UpSource::kGiven;
+  const UpDirection both = withGivenSupport(from_tf, deck);
+  EXPECT_EQ(both.up, Eigen::Vector3d::UnitY());
+  EXPECT_TRUE(both.support_given);
+  EXPECT_NEAR(both.heightAboveSupport(top_in_camera), 0.06, 1e-9);
+}
+
 TEST(UpDirection, NoPlaneNoUpAndTheFacesDominantNormal)
 {
   cv::Mat depth(48, 64, CV_32FC1, cv::Scalar(std::nanf("")));
@@ -357,6 +387,109 @@ TEST(TopFaceCheck, TouchingBricksInALowLightAreFoundWithoutAFalseCompleteFace)
     found += by_reading;
   }
   EXPECT_GE(found, 4);
+}
+
+/// Two boxes sharing a 0.30 x 0.20 m top, 0.15 and 0.07 m tall.
+const char* const kFlatAndTallBoxes = R"(bricks:
+  - {name: box_small, length_m: 0.30, width_m: 0.20, height_m: 0.15}
+  - {name: box_flat, length_m: 0.30, width_m: 0.20, height_m: 0.07}
+)";
+
+/// The ground (world z = 0) in the scene's camera frame, as the nodelet's
+/// support_frame gives it.
+Eigen::Vector4d groundInCamera(const sim::Scene& scene)
+{
+  Eigen::Vector4d plane;
+  plane << worldUpInCamera(scene), scene.world_T_camera.translation().z();
+  return plane;
+}
+
+/// The colour-free candidates of `scene` seen with up given and, when
+/// `ground_given`, the ground.
+std::vector<BrickCandidate> colourFreeCandidates(const sim::Scene& scene, const BrickCatalogue& catalogue,
+                                                 bool ground_given)
+{
+  FrontEndParams params;
+  params.mode = SegmentationMode::kColourFree;
+  params.roi.up_direction = worldUpInCamera(scene);
+  if (ground_given) params.roi.support_plane = groundInCamera(scene);
+  return FrontEnd(catalogue, params).process(render(scene).frame).candidates;
+}
+
+TEST(TopFaceCheck, AFlatBoxIsToldFromATallOneSharingItsTopByItsHeightAboveTheGivenGround)
+{
+  // Seen from straight above, a flat box shows no side: its top is also a
+  // tall box's. Its height above the ground (given) is only the flat one's.
+  const BrickCatalogue catalogue = BrickCatalogue::fromYamlString(kFlatAndTallBoxes);
+  const sim::Scene flat = scene({{"box_flat", Eigen::Vector3d(0.0, 0.0, 0.07), 20.0}}, 89.0, catalogue);
+
+  const std::vector<BrickCandidate> unsure = colourFreeCandidates(flat, catalogue, false);
+  ASSERT_EQ(unsure.size(), 1u);
+  EXPECT_FALSE(unsure[0].complete);
+  EXPECT_NE(unsure[0].partial_reason.find("type uncertain"), std::string::npos) << unsure[0].partial_reason;
+
+  const std::vector<BrickCandidate> sure = colourFreeCandidates(flat, catalogue, true);
+  ASSERT_EQ(sure.size(), 1u);
+  EXPECT_TRUE(sure[0].complete) << sure[0].partial_reason;
+  EXPECT_EQ(sure[0].type_name, "box_flat");
+}
+
+TEST(TopFaceCheck, AFlatBoxOnAPlinthTheCatalogueLacksIsNotTypedByItsHeightAboveTheGround)
+{
+  // On a 0.10 m plinth, the flat box's top is 0.17 m up: a tall box's on
+  // the ground, within the tolerance, and no stack of catalogue boxes puts
+  // a flat one there. The plinth's top, seen around the box's foot, is
+  // where it may stand: its type stays in doubt.
+  const BrickCatalogue catalogue = BrickCatalogue::fromYamlString(kFlatAndTallBoxes);
+  const BrickCatalogue with_plinth = BrickCatalogue::fromYamlString(std::string(kFlatAndTallBoxes) +
+                                                                    "  - {name: plinth, length_m: 0.60, width_m: "
+                                                                    "0.45, height_m: 0.10}\n");
+  const sim::Scene on_plinth = scene({{"box_flat", Eigen::Vector3d(0.0, 0.0, 0.17), 20.0},
+                                      {"plinth", Eigen::Vector3d(0.0, 0.0, 0.10), 20.0}},
+                                     89.0, with_plinth);
+  const std::vector<BrickCandidate> candidates = colourFreeCandidates(on_plinth, catalogue, true);
+  ASSERT_FALSE(candidates.empty());
+  for (const BrickCandidate& candidate : candidates)
+  {
+    EXPECT_FALSE(candidate.complete) << candidate.type_name << " " << candidate.length_m << " x " << candidate.width_m;
+    if (std::abs(candidate.length_m - 0.30) < 0.03)
+      EXPECT_NE(candidate.partial_reason.find("type uncertain"), std::string::npos) << candidate.partial_reason;
+  }
+}
+
+TEST(TopFaceCheck, AFlatBoxBetweenTallOnesEndsAtTheirWallsWhenNoLargerBoxCouldStandThere)
+{
+  // A flat box touching a tall one along each long side: beyond both, a
+  // wall 0.08 m high, as high as a flat box resting on it. Were one resting
+  // there, the face would go on beneath it: a large box's 0.40 x 0.30 m top
+  // could be the face's, partly covered. Its top 0.07 m above the ground
+  // (given) is no large box's (0.25 m tall): the walls are its ends.
+  const BrickCatalogue catalogue = BrickCatalogue::fromYamlString(std::string(kFlatAndTallBoxes) +
+                                                                  "  - {name: box_large, length_m: 0.40, width_m: "
+                                                                  "0.30, height_m: 0.25}\n");
+  const sim::Scene row = scene({{"box_flat", Eigen::Vector3d(0.0, 0.0, 0.07), 0.0},
+                                {"box_small", Eigen::Vector3d(0.0, 0.20, 0.15), 0.0},
+                                {"box_small", Eigen::Vector3d(0.0, -0.20, 0.15), 0.0}},
+                               89.0, catalogue);
+  auto flatOne = [](const std::vector<BrickCandidate>& candidates) -> const BrickCandidate* {
+    // The flat box's top is the lowest face, nearest the image centre.
+    for (const BrickCandidate& candidate : candidates)
+      if ((candidate.centroid_px - Eigen::Vector2d(640.0, 360.0)).norm() < 40.0) return &candidate;
+    return nullptr;
+  };
+  const std::vector<BrickCandidate> unsure = colourFreeCandidates(row, catalogue, false);
+  const BrickCandidate* unsure_flat = flatOne(unsure);
+  EXPECT_TRUE(unsure_flat == nullptr || !unsure_flat->complete) << "without the ground a large box may lie under";
+
+  const std::vector<BrickCandidate> sure = colourFreeCandidates(row, catalogue, true);
+  const BrickCandidate* sure_flat = flatOne(sure);
+  ASSERT_NE(sure_flat, nullptr);
+  EXPECT_TRUE(sure_flat->complete) << sure_flat->partial_reason;
+  EXPECT_EQ(sure_flat->type_name, "box_flat");
+  for (int k : {0, 2}) EXPECT_EQ(sure_flat->edge_kinds[k], EdgeKind::kStepUp) << "edge " << k;
+  // The tall boxes' tops are also a flat box's on another (0.14 m): in doubt.
+  for (const BrickCandidate& candidate : sure)
+    if (&candidate != sure_flat) EXPECT_FALSE(candidate.complete) << candidate.type_name;
 }
 
 TEST(TopFaceCheck, ABoxLyingOnItsSideIsNotACompleteTopWhenItsSideFaceHasNearlyTheTopsSize)

@@ -1,5 +1,7 @@
 // Telling catalogue types apart by a face's size and the heights of its
 // sides: which rivals the evidence rules out, and which it leaves in doubt.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "brick_pose/roi/type_evidence.h"
@@ -100,5 +102,49 @@ TEST(TypeEvidence, LyingVariantsAreTheFacesThatDifferFromTheTop)
   EXPECT_FALSE(typeDoubt(rivals, crate, 0.40, 0.285, {side(0.28, true)}).empty());
   EXPECT_TRUE(typeDoubt(rivals, crate, 0.40, 0.30, {side(0.28, true)}).empty());
 }
+
+TEST(StackHeights, AnyNumberOfItemsInAnyOrderMakeAHeight)
+{
+  const StackHeights stacks({0.07, 0.15});
+  EXPECT_TRUE(stacks.canMake(0.0, 0.005)) << "nothing beneath: standing on the support";
+  EXPECT_TRUE(stacks.canMake(0.14, 0.002)) << "two flat boxes";
+  EXPECT_TRUE(stacks.canMake(0.22, 0.002)) << "a flat box on a tall one";
+  EXPECT_TRUE(stacks.canMake(0.07 * 5 + 0.15 * 3, 0.002)) << "eight boxes";
+  EXPECT_FALSE(stacks.canMake(0.10, 0.02)) << "no stack is 0.08-0.12 m";
+  EXPECT_TRUE(stacks.canMake(0.10, 0.03)) << "0.07 is within 0.03 of it";
+  EXPECT_FALSE(stacks.canMake(-0.05, 0.02)) << "below the support";
+  EXPECT_TRUE(stacks.canMake(-0.01, 0.02));
+  EXPECT_FALSE(stacks.canMake(std::nan(""), 0.02));
+  EXPECT_TRUE(StackHeights({0.07}, 1.0).canMake(5.0, 0.01)) << "beyond the heights it knows, anything may be";
+}
+
+TEST(StackHeights, ABoxLyingOnASideOrStandingOnAnEndStacksToo)
+{
+  // A 0.30 x 0.20 x 0.07 box makes 0.07, 0.20 and 0.30 m.
+  const StackHeights stacks = StackHeights::of({kFlat});
+  EXPECT_TRUE(stacks.canMake(0.20, 0.002));
+  EXPECT_TRUE(stacks.canMake(0.30, 0.002));
+  EXPECT_TRUE(stacks.canMake(0.27, 0.002));
+  EXPECT_FALSE(stacks.canMake(0.10, 0.02));
+}
+
+TEST(StackHeights, AFacesHeightAboveTheSupportRulesOutTheTypesThatCannotStandThere)
+{
+  const StackHeights stacks = StackHeights::of({kSmall, kFlat});
+  const std::vector<const BrickType*> rivals{&kSmall, &kFlat};
+  const double tolerance_m = 0.025;
+  // On the ground: only the flat box's top is 0.07 m up.
+  EXPECT_EQ(typesStandingAt(rivals, 0.07, {}, stacks, tolerance_m), std::vector<const BrickType*>{&kFlat});
+  // 0.15 m: a tall box, or a flat one on a flat one (0.14 m).
+  EXPECT_EQ(typesStandingAt(rivals, 0.15, {}, stacks, tolerance_m).size(), 2u);
+  // 0.17 m: a tall box on the ground (0.02 off), not a flat one: 0.10 m
+  // beneath it is no stack ...
+  EXPECT_EQ(typesStandingAt(rivals, 0.17, {}, stacks, tolerance_m), std::vector<const BrickType*>{&kSmall});
+  // ... unless it stands on a plinth 0.10 m high seen around it.
+  EXPECT_EQ(typesStandingAt(rivals, 0.17, {0.10}, stacks, tolerance_m).size(), 2u);
+  // Below both: nothing could stand there.
+  EXPECT_TRUE(typesStandingAt(rivals, 0.03, {}, stacks, tolerance_m).empty());
+}
+
 }  // namespace
 }  // namespace brick_pose

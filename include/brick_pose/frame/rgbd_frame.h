@@ -27,6 +27,11 @@ struct RgbdFrame
   /// known (the ingestion stage looks up the configured up_frame in tf).
   /// Without it the front end infers up from the scene.
   std::optional<Eigen::Vector3d> up_in_camera;
+  /// The plane the pile stands on (a pallet's deck, a table, the floor) in
+  /// this camera's frame, when known (the ingestion stage looks up the
+  /// configured support_frame in tf: its xy-plane): (n, d) with n . p + d = 0
+  /// and n unit, pointing up.
+  std::optional<Eigen::Vector4d> support_in_camera;
 
   int width_px() const { return rgb.cols; }
   int height_px() const { return rgb.rows; }

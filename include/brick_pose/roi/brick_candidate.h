@@ -78,6 +78,13 @@ struct BrickCandidate
   /// the image border or a closer surface (an occluder) lies right outside
   /// it (edge_kinds[k] is kImageBorder or kOcclusion).
   std::array<bool, 4> edge_truncated{{false, false, false, false}};
+  /// Edge k is a step up to a wall as high as a catalogue item resting on
+  /// the face could be (kept as kOcclusion): the wall's height above the
+  /// face (m), else NaN. Only a wall clear of the edge's ends is recorded.
+  std::array<double, 4> resting_wall_m{{std::numeric_limits<double>::quiet_NaN(),
+                                        std::numeric_limits<double>::quiet_NaN(),
+                                        std::numeric_limits<double>::quiet_NaN(),
+                                        std::numeric_limits<double>::quiet_NaN()}};
   /// Angle between the face's normal and the frame's up direction (deg);
   /// NaN when up is unknown.
   double tilt_from_up_deg = 0.0;

@@ -21,6 +21,7 @@
 #include "brick_pose/roi/edge_evidence.h"
 #include "brick_pose/roi/face_tiling.h"
 #include "brick_pose/roi/side_faces.h"
+#include "brick_pose/roi/type_evidence.h"
 #include "brick_pose/roi/up_direction.h"
 #include "brick_pose/segmentation/segment.h"
 
@@ -63,6 +64,12 @@ struct RoiFilterParams
   /// up_direction.h). Faces whose normal is more than max_tilt_deg from up
   /// are not top faces and are dropped.
   Eigen::Vector3d up_direction = Eigen::Vector3d::Zero();
+  /// The plane the pile stands on (camera frame, (n, d) with n . p + d = 0
+  /// and n pointing up; e.g. from tf through the nodelet's support_frame).
+  /// Zero: not given. Only a given support tells types apart by a face's
+  /// height above it (height_above_support_tolerance_m): an estimated one
+  /// may be the top of a layer filling the view.
+  Eigen::Vector4d support_plane = Eigen::Vector4d::Zero();
   double max_tilt_deg = 30.0;
   /// What lies beyond each edge of a face (complete needs four real edges).
   EdgeEvidenceParams edges;
@@ -87,6 +94,14 @@ struct RoiFilterParams
   /// confirmed with the cuts continuing it on one line (see
   /// FaceTilingParams::confirm_along_lines).
   bool confirm_seams_along_lines = true;
+  /// Colour-free: a face's height above the given supporting plane
+  /// (support_plane, or the frame's support from tf) rules out the types
+  /// that could not stand there, on the support or on a stack of catalogue
+  /// items, within this distance (m). Boxes that share a top but not a
+  /// height (a flat and a tall box) are told apart by it where no side face
+  /// shows. It trusts the given plane to be what the pile stands on (a
+  /// pallet's deck, not the floor under it); 0 switches it off.
+  double height_above_support_tolerance_m = 0.025;
   PlaneFitParams plane;
   QuadFitParams quad;
   /// The bricks a merged face is cut into are measured on this many threads
@@ -187,6 +202,23 @@ private:
   /// sides seen do not rule out as `type_doubt`; the reason when none fits.
   std::optional<std::string> typeBySize(const RgbdFrame& frame, const FrameContext& context,
                                         BrickCandidate& candidate) const;
+  /// Colour-free: turns the face's walls (edges to a wall something resting
+  /// on it could be: BrickCandidate::resting_wall_m) back into its ends
+  /// (kStepUp) when the face cannot go on beneath them, and nothing else
+  /// cuts it off.
+  void endAtWalls(const RgbdFrame& frame, const FrameContext& context, BrickCandidate& candidate) const;
+  /// Whether some catalogue top larger than the face across its walls could
+  /// be the face's, partly under something resting on it: one whose type
+  /// could stand at the face's height above the given support (any, when
+  /// no support is given).
+  bool faceMayGoOnBeneathWalls(const RgbdFrame& frame, const FrameContext& context,
+                               const BrickCandidate& candidate) const;
+  /// Narrows a colour-free face's types (`fitting`) and their rivals to
+  /// those that could stand at the face's height above the supporting
+  /// plane (see height_above_support_tolerance_m); unchanged without a
+  /// support, or when the height rules out all or none.
+  void keepTypesStandingThere(const RgbdFrame& frame, const FrameContext& context, const BrickCandidate& candidate,
+                              std::vector<const BrickType*>& fitting, std::vector<const BrickType*>& rivals) const;
   /// Colour-free: a complete face whose top smaller catalogue tops also
   /// make up (two box_small side by side are a box_large) is one brick only
   /// where the seam between them would show, as a line on a `plain` face,
@@ -257,6 +289,9 @@ private:
   /// The catalogue's boxes lying on a side or standing on an end, as rivals
   /// of a colour-free face's type (see type_evidence.h).
   std::vector<BrickType> lying_variants_;
+  /// The heights stacks of catalogue items make: what a colour-free face's
+  /// height above the supporting plane allows of its type.
+  StackHeights stack_heights_;
   RoiFilterParams params_;
   CloudProcessor cloud_processor_;
 };

@@ -44,4 +44,38 @@ std::vector<BrickType> lyingVariants(const std::vector<BrickType>& types);
 std::string typeDoubt(const std::vector<const BrickType*>& rivals, const BrickType& best, double length_m,
                       double width_m, const std::vector<SideFaceEvidence>& sides,
                       const SideFaceParams& params = SideFaceParams());
+
+/// The heights a stack of catalogue items can make: any number of them, in
+/// any of the orientations they can lie in, one on another. A top `h` above
+/// the supporting plane of a box `b` tall means the box stands on the
+/// support (h = b) or on items whose heights add up to h - b; where no
+/// stack can make that, the box is not of that type, whatever its top's
+/// size. (The pile is assumed to hold catalogue items, and to stand on the
+/// plane taken as the support.)
+class StackHeights
+{
+public:
+  /// From the heights of the items (m, > 0); stacks up to `max_height_m`
+  /// are known, on a grid of `resolution_m`.
+  explicit StackHeights(const std::vector<double>& item_heights_m, double max_height_m = 3.0,
+                        double resolution_m = 0.001);
+  /// Of the items of `types`, each on its bottom, a side or an end.
+  static StackHeights of(const std::vector<BrickType>& types);
+
+  /// Whether some stack (none at all included) is within `tolerance_m` of
+  /// `height_m`; above max_height_m every height is taken as makeable.
+  bool canMake(double height_m, double tolerance_m) const;
+
+private:
+  double resolution_m_;
+  std::vector<char> makeable_;  ///< by height / resolution_m_
+};
+
+/// The types of `rivals` (catalogue types and lying variants) that could
+/// show their top `height_above_support_m` above the supporting plane:
+/// standing on it, on one of `levels_m` (heights above it of other surfaces
+/// the face may stand on), or on a stack of items on either.
+std::vector<const BrickType*> typesStandingAt(const std::vector<const BrickType*>& rivals,
+                                              double height_above_support_m, const std::vector<double>& levels_m,
+                                              const StackHeights& stacks, double tolerance_m);
 }  // namespace brick_pose

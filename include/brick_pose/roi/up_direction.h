@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "brick_pose/frame/rgbd_frame.h"
 
@@ -39,6 +40,9 @@ struct UpDirection
   Eigen::Vector3d support_normal = Eigen::Vector3d::Zero();
   double support_offset_m = 0.0;
   double support_fraction = 0.0;
+  /// The supporting plane was given (tf), not estimated: it is what the
+  /// pile stands on, so a face's height above it may tell its type.
+  bool support_given = false;
 
   bool known() const { return source != UpSource::kUnknown; }
   /// Signed distance of a point above the supporting plane (0 without one).
@@ -72,6 +76,20 @@ struct UpDirectionParams
 /// the plane itself; unknown when no plane holds min_support_fraction of the
 /// samples. Deterministic (fixed seed).
 UpDirection estimateSupportPlaneUp(const RgbdFrame& frame, const UpDirectionParams& params = UpDirectionParams());
+
+/// The xy-plane of a frame posed at `camera_T_frame` (e.g. a pallet's deck
+/// from tf), as (n, d) in the camera frame: n . p + d = 0, n its +z.
+Eigen::Vector4d xyPlaneInCamera(const Eigen::Isometry3d& camera_T_frame);
+
+/// Up and the supporting plane from a given plane (n, d), n . p + d = 0 in
+/// the camera frame with n pointing up (need not be unit); unknown when n is
+/// zero or not finite.
+UpDirection givenSupport(const Eigen::Vector4d& plane);
+
+/// `up` with its supporting plane replaced by the given `plane` (see
+/// givenSupport), and its direction too when it had none; unchanged when
+/// the plane is unknown.
+UpDirection withGivenSupport(UpDirection up, const Eigen::Vector4d& plane);
 
 /// The mean normal of the heaviest cluster of `normals` (unit, toward the
 /// camera) weighted by `weights` (e.g. segment areas); unknown when empty.

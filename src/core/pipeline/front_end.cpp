@@ -231,6 +231,9 @@ FrameContext FrontEnd::frameContext(const RgbdFrame& frame, const std::vector<Se
     context.up.up = frame.up_in_camera->normalized();
     context.up.source = UpSource::kGiven;
   }
+  // The plane the pile stands on, from tf, wins over a configured one.
+  if (frame.support_in_camera) context.up = withGivenSupport(context.up, *frame.support_in_camera);
+  if (context.up.support_given) return context;
   const UpDirection support = estimateSupportPlaneUp(frame, params_.up);
   if (context.up.known())
   {

@@ -100,6 +100,7 @@ ParamBindings frontEndBindings(FrontEndParams& params)
           {"tiling_min_seam_strength", &roi.tiling.min_seam_strength},
           {"plain_seam_line_share", &roi.plain_seam_line_share},
           {"confirm_seams_along_lines", &roi.confirm_seams_along_lines},
+          {"height_above_support_tolerance_m", &roi.height_above_support_tolerance_m},
           {"side_height_tolerance_m", &roi.sides.height_tolerance_m},
           {"side_height_tolerance_fraction", &roi.sides.height_tolerance_fraction},
           {"up_min_support_fraction", &params.up.min_support_fraction},

@@ -15,6 +15,7 @@
 #include "brick_pose/common/rounding.h"
 #include "brick_pose/frame/organized_cloud.h"
 #include "brick_pose/roi/colour_uniformity.h"
+#include "brick_pose/roi/foot_levels.h"
 #include "brick_pose/roi/inset_fill.h"
 #include "brick_pose/roi/raised_layer.h"
 #include "brick_pose/roi/seam_probe.h"
@@ -39,6 +40,12 @@ constexpr double kMaxUntiledForAlternative = 0.1;
 /// no better for seeing more seams.
 constexpr double kUntiledSlackOneWay = 0.01;
 constexpr double kMaxUntiledWithSeenSeams = 0.15;
+/// A wall the camera sees standing at a face's edge, as high as an item
+/// resting on the face could be, ends the face unless a catalogue top
+/// larger than the face by more than this (m) across the wall could be the
+/// face's (see faceMayGoOnBeneathWalls): a strip this narrow under a
+/// resting item is within the error of the face's measured size.
+constexpr double kMaxCoveredByRestingWallM = 0.005;
 constexpr double kMinSeenCutShare = 0.75;
 /// A face of one brick's size is cut into smaller bricks along lines only
 /// when each is this dark (grey levels below both sides): the rounded edges
@@ -311,11 +318,14 @@ double unsegmentedCoplanarFraction(const RgbdFrame& frame, const BrickCandidate&
 }
 
 /// What lies beyond each quad edge (see edge_evidence.h). A step up to a
-/// wall as high as something resting on the face could be is an occlusion.
+/// wall as high as something resting on the face could be is an occlusion;
+/// its height goes to `resting_wall_m` when the edge's ends are clear.
 EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate, const EdgeEvidenceParams& params,
-                        const BrickCatalogue& catalogue, double resting_height_margin_m)
+                        const BrickCatalogue& catalogue, double resting_height_margin_m,
+                        std::array<double, 4>& resting_wall_m)
 {
   EdgeKinds kinds;
+  resting_wall_m.fill(std::numeric_limits<double>::quiet_NaN());
   for (int k = 0; k < 4; ++k)
   {
     const Eigen::Vector2d& a = candidate.corners_px[k];
@@ -326,7 +336,12 @@ EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate,
     kinds[k] = evidence.kind;
     if (kinds[k] == EdgeKind::kStepUp &&
         catalogue.couldRiseTo(evidence.outside_offset_m, resting_height_margin_m))
+    {
       kinds[k] = EdgeKind::kOcclusion;
+      if (occlusionAtEdgeEnds(frame, candidate.plane, a, b, outward, params, evidence.outside_offset_m) !=
+          EdgeKind::kOcclusion)
+        resting_wall_m[k] = evidence.outside_offset_m;
+    }
     const double step_up_height_m =
         kinds[k] == EdgeKind::kStepUp ? evidence.outside_offset_m : std::numeric_limits<double>::quiet_NaN();
     if (isRealEdge(kinds[k], true) &&
@@ -443,8 +458,13 @@ void RoiFilterParams::validate() const
   check.require(resting_height_margin_m >= 0.0, "resting_height_margin_m", "must be >= 0");
   check.require(plain_seam_line_share >= 0.0 && plain_seam_line_share < 1.0, "plain_seam_line_share",
                 "must be in [0, 1)");
+  check.require(height_above_support_tolerance_m >= 0.0 && height_above_support_tolerance_m < 0.1,
+                "height_above_support_tolerance_m", "must be in [0, 0.1)");
   check.require(ragged_outline_px >= 0.0, "ragged_outline_px", "must be >= 0");
   check.require(std::isfinite(up_direction.norm()), "up_direction", "must be finite");
+  check.require(support_plane.allFinite(), "support_plane", "must be finite");
+  check.require(support_plane.isZero() || support_plane.head<3>().norm() > 1e-9, "support_plane",
+                "needs a normal (or all zero: not given)");
   check.require(max_tilt_deg > 0.0 && max_tilt_deg <= 90.0, "max_tilt_deg", "must be in (0, 90]");
   check.require(quad.side_band_px > 0.0, "quad.side_band_px", "must be > 0");
   check.require(quad.side_search_px >= 0.0, "quad.side_search_px", "must be >= 0");
@@ -460,6 +480,7 @@ RoiFilter::RoiFilter(const BrickCatalogue& catalogue, const RoiFilterParams& par
                      const CloudProcessorParams& cloud_params)
   : catalogue_(catalogue),
     lying_variants_(lyingVariants(catalogue.types())),
+    stack_heights_(StackHeights::of(catalogue.types())),
     params_(params),
     cloud_processor_(cloud_params)
 {
@@ -474,6 +495,7 @@ FrameContext RoiFilter::defaultContext() const
     context.up.up = params_.up_direction.normalized();
     context.up.source = UpSource::kGiven;
   }
+  context.up = withGivenSupport(context.up, params_.support_plane);
   return context;
 }
 
@@ -818,6 +840,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
     candidate.typed_by_colour = !typed_by_size;  // the tiler's type is a size
     // Without colour, a brick cut off by the border or an occluder could be
     // any longer type: its size does not tell.
+    if (!reason && typed_by_size) endAtWalls(frame, context, candidate);
     if (!reason && typed_by_size && anyTruncated(candidate))
       reason = "face is cut by an occluder or the image border (" + truncation(candidate) +
                "): its size cannot tell its type";
@@ -926,7 +949,8 @@ std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const S
   candidate.t2_m = candidate.centroid_m - 0.25 * candidate.length_m * long_axis;
   candidate.t1_px = camera.project(candidate.t1_m);
   candidate.t2_px = camera.project(candidate.t2_m);
-  candidate.edge_kinds = classifyEdges(frame, candidate, edges, catalogue_, params_.resting_height_margin_m);
+  candidate.edge_kinds =
+      classifyEdges(frame, candidate, edges, catalogue_, params_.resting_height_margin_m, candidate.resting_wall_m);
   for (int k = 0; k < 4; ++k)
     candidate.edge_truncated[k] =
         candidate.edge_kinds[k] == EdgeKind::kImageBorder || candidate.edge_kinds[k] == EdgeKind::kOcclusion;
@@ -954,6 +978,7 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
 
   // Colour-free: only whole faces can be told apart by size (half a blue
   // brick looks like a green one).
+  endAtWalls(frame, context, candidate);
   if (anyTruncated(candidate)) return "face is cut by an occluder or the image border (" + truncation(candidate) + ")";
   if (!fillsItsQuad(candidate, params_))
   {
@@ -994,6 +1019,7 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
       rivals.push_back(&variant);
       tallest_m = std::max(tallest_m, variant.height_m);
     }
+  keepTypesStandingThere(frame, context, candidate, fitting, rivals);
   // Several faces of nearly one size: the sides seen to their foot below
   // the face's real edges say how tall the box is.
   std::vector<SideFaceEvidence> sides;
@@ -1017,6 +1043,99 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
   candidate.type_name = best->name;
   candidate.type_doubt = typeDoubt(rivals, *best, candidate.length_m, candidate.width_m, sides, params_.sides);
   return std::nullopt;
+}
+
+void RoiFilter::endAtWalls(const RgbdFrame& frame, const FrameContext& context, BrickCandidate& candidate) const
+{
+  bool any_wall = false;
+  for (int k = 0; k < 4; ++k)
+  {
+    if (!candidate.edge_truncated[k]) continue;
+    // Cut off by the border or an occluder: whatever the walls are, the
+    // face's size does not tell its type.
+    if (std::isnan(candidate.resting_wall_m[k])) return;
+    any_wall = true;
+  }
+  if (!any_wall || faceMayGoOnBeneathWalls(frame, context, candidate)) return;
+  for (int k = 0; k < 4; ++k)
+    if (candidate.edge_truncated[k])
+    {
+      candidate.edge_kinds[k] = EdgeKind::kStepUp;
+      candidate.edge_truncated[k] = false;
+    }
+}
+
+bool RoiFilter::faceMayGoOnBeneathWalls(const RgbdFrame& frame, const FrameContext& context,
+                                        const BrickCandidate& candidate) const
+{
+  // Edges 0 and 2 run along the face's length: a wall there may hide more
+  // of its width; a wall on an end (1, 3) more of its length. A top larger
+  // by less than kMaxCoveredByRestingWallM is the face measured short.
+  auto walled = [&](int k) { return candidate.edge_truncated[k] && !std::isnan(candidate.resting_wall_m[k]); };
+  const bool may_be_wider = walled(0) || walled(2), may_be_longer = walled(1) || walled(3);
+  const double hidden_m = kMaxCoveredByRestingWallM;
+  const double tolerance_m = params_.classification_tolerance_m;
+  auto extends = [&](double along_m, double across_m) {
+    const bool length_fits = may_be_longer ? along_m >= candidate.length_m + hidden_m
+                                           : std::abs(along_m - candidate.length_m) <= tolerance_m;
+    const bool width_fits = may_be_wider ? across_m >= candidate.width_m + hidden_m
+                                         : std::abs(across_m - candidate.width_m) <= tolerance_m;
+    return length_fits && width_fits;
+  };
+  auto shows = [&](const BrickType& type) {
+    return std::abs(type.length_m - candidate.length_m) <= tolerance_m &&
+           std::abs(type.width_m - candidate.width_m) <= tolerance_m;
+  };
+  std::vector<const BrickType*> larger, own;
+  auto consider = [&](const BrickType& type) {
+    if (extends(type.length_m, type.width_m) || extends(type.width_m, type.length_m)) larger.push_back(&type);
+    if (shows(type)) own.push_back(&type);
+  };
+  for (const BrickType& type : catalogue_.types()) consider(type);
+  for (const BrickType& variant : lying_variants_) consider(variant);
+  // No catalogue top is larger that way: nothing rests on the face, which
+  // ends at the walls.
+  if (larger.empty()) return false;
+  // Only the face's height above a given support rules those tops out,
+  // once the face's own types could stand there (else the support is not
+  // what it stands on).
+  const double height_tolerance_m = params_.height_above_support_tolerance_m;
+  if (!(height_tolerance_m > 0.0) || !context.up.support_given) return true;
+  const double height_m = context.up.heightAboveSupport(candidate.centroid_m);
+  if (typesStandingAt(own, height_m, {}, stack_heights_, height_tolerance_m).empty()) return true;
+  const std::vector<double> levels_m = levelsAroundFoot(frame, candidate.mask, candidate.bounding_box_px,
+                                                        candidate.plane, context.up, height_tolerance_m);
+  return !typesStandingAt(larger, height_m, levels_m, stack_heights_, height_tolerance_m).empty();
+}
+
+void RoiFilter::keepTypesStandingThere(const RgbdFrame& frame, const FrameContext& context,
+                                       const BrickCandidate& candidate,
+                                       std::vector<const BrickType*>& fitting,
+                                       std::vector<const BrickType*>& rivals) const
+{
+  if (!(params_.height_above_support_tolerance_m > 0.0) || !context.up.support_given || rivals.size() < 2) return;
+  const double tolerance_m = params_.height_above_support_tolerance_m;
+  const double height_m = context.up.heightAboveSupport(candidate.centroid_m);
+  std::vector<const BrickType*> standing = typesStandingAt(rivals, height_m, {}, stack_heights_, tolerance_m);
+  // None could stand there: the face stands on something else (a plinth,
+  // the given plane is the floor under a pallet), and its height says
+  // nothing.
+  if (standing.empty()) return;
+  // A deck or a plinth seen around the face's foot is one more place it
+  // may stand: it may only widen what the face can be.
+  const std::vector<double> levels_m =
+      levelsAroundFoot(frame, candidate.mask, candidate.bounding_box_px, candidate.plane, context.up, tolerance_m);
+  if (!levels_m.empty()) standing = typesStandingAt(rivals, height_m, levels_m, stack_heights_, tolerance_m);
+  if (standing.size() == rivals.size()) return;
+  std::vector<const BrickType*> fitting_standing;
+  for (const BrickType* type : fitting)
+    if (std::find(standing.begin(), standing.end(), type) != standing.end()) fitting_standing.push_back(type);
+  // No catalogue type could stand there but a box lying on a side could:
+  // the types stay, and the lying box doubts them.
+  if (!fitting_standing.empty()) fitting = std::move(fitting_standing);
+  rivals = standing;
+  for (const BrickType* type : fitting)
+    if (std::find(rivals.begin(), rivals.end(), type) == rivals.end()) rivals.push_back(type);
 }
 
 void RoiFilter::doubtComposedTop(const RgbdFrame& frame, std::optional<bool> plain, bool in_layer,

@@ -99,4 +99,57 @@ std::string typeDoubt(const std::vector<const BrickType*>& rivals, const BrickTy
   return "type uncertain: the face fits " + best.name + " and " + others +
          ", and no side seen tells their heights apart";
 }
+
+StackHeights::StackHeights(const std::vector<double>& item_heights_m, double max_height_m, double resolution_m)
+  : resolution_m_(resolution_m), makeable_(static_cast<std::size_t>(std::ceil(max_height_m / resolution_m)) + 1, 0)
+{
+  std::vector<std::size_t> steps;
+  for (const double height_m : item_heights_m)
+    if (height_m > 0.0) steps.push_back(static_cast<std::size_t>(std::max(1.0, std::round(height_m / resolution_m))));
+  // Unbounded knapsack: a height is makeable when one item less is.
+  makeable_[0] = 1;
+  for (std::size_t k = 1; k < makeable_.size(); ++k)
+    for (const std::size_t step : steps)
+      if (step <= k && makeable_[k - step])
+      {
+        makeable_[k] = 1;
+        break;
+      }
+}
+
+StackHeights StackHeights::of(const std::vector<BrickType>& types)
+{
+  std::vector<double> heights_m;
+  for (const BrickType& type : types)
+    heights_m.insert(heights_m.end(), {type.height_m, type.width_m, type.length_m});
+  return StackHeights(heights_m);
+}
+
+bool StackHeights::canMake(double height_m, double tolerance_m) const
+{
+  if (!std::isfinite(height_m)) return false;
+  const double last_m = static_cast<double>(makeable_.size() - 1) * resolution_m_;
+  if (height_m - tolerance_m > last_m) return true;
+  const long first = std::max(0L, static_cast<long>(std::ceil((height_m - tolerance_m) / resolution_m_)));
+  const long last = std::min(static_cast<long>(makeable_.size()) - 1,
+                             static_cast<long>(std::floor((height_m + tolerance_m) / resolution_m_)));
+  for (long k = first; k <= last; ++k)
+    if (makeable_[static_cast<std::size_t>(k)]) return true;
+  return false;
+}
+
+std::vector<const BrickType*> typesStandingAt(const std::vector<const BrickType*>& rivals,
+                                              double height_above_support_m, const std::vector<double>& levels_m,
+                                              const StackHeights& stacks, double tolerance_m)
+{
+  std::vector<const BrickType*> standing;
+  for (const BrickType* type : rivals)
+  {
+    const double below_m = height_above_support_m - type->height_m;
+    bool can_stand = stacks.canMake(below_m, tolerance_m);
+    for (const double level_m : levels_m) can_stand = can_stand || stacks.canMake(below_m - level_m, tolerance_m);
+    if (can_stand) standing.push_back(type);
+  }
+  return standing;
+}
 }  // namespace brick_pose

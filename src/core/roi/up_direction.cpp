@@ -124,6 +124,42 @@ UpDirection estimateSupportPlaneUp(const RgbdFrame& frame, const UpDirectionPara
   return result;
 }
 
+Eigen::Vector4d xyPlaneInCamera(const Eigen::Isometry3d& camera_T_frame)
+{
+  const Eigen::Vector3d normal = camera_T_frame.linear().col(2);
+  Eigen::Vector4d plane;
+  plane << normal, -normal.dot(camera_T_frame.translation());
+  return plane;
+}
+
+UpDirection givenSupport(const Eigen::Vector4d& plane)
+{
+  UpDirection given;
+  const double norm = plane.head<3>().norm();
+  if (!plane.allFinite() || !(norm > 1e-9)) return given;
+  given.up = plane.head<3>() / norm;
+  given.source = UpSource::kGiven;
+  given.has_support_plane = true;
+  given.support_given = true;
+  given.support_normal = given.up;
+  given.support_offset_m = plane[3] / norm;
+  given.support_fraction = 0.0;
+  return given;
+}
+
+UpDirection withGivenSupport(UpDirection up, const Eigen::Vector4d& plane)
+{
+  const UpDirection given = givenSupport(plane);
+  if (!given.known()) return up;
+  if (!up.known()) return given;
+  up.has_support_plane = true;
+  up.support_given = true;
+  up.support_normal = given.support_normal;
+  up.support_offset_m = given.support_offset_m;
+  up.support_fraction = 0.0;
+  return up;
+}
+
 UpDirection dominantFaceNormal(const std::vector<Eigen::Vector3d>& normals, const std::vector<double>& weights,
                                const UpDirectionParams& params)
 {

@@ -1,0 +1,85 @@
+#include "brick_pose/roi/foot_levels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include <opencv2/imgproc.hpp>
+
+namespace brick_pose
+{
+namespace
+{
+/// The heights above the support of the ring's pixels lower than the face.
+std::vector<double> lowerRingHeights(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box_px,
+                                     const PlaneFit& plane, const UpDirection& support, const FootLevelParams& params)
+{
+  std::vector<double> heights_m;
+  const cv::Rect image(0, 0, frame.width_px(), frame.height_px());
+  const int reach = params.outer_px;
+  const cv::Rect grown =
+      cv::Rect(box_px.x - reach, box_px.y - reach, box_px.width + 2 * reach, box_px.height + 2 * reach) & image;
+  const cv::Rect mask_in_image = box_px & image;
+  if (grown.area() == 0 || mask_in_image.area() == 0) return heights_m;
+  cv::Mat placed = cv::Mat::zeros(grown.size(), CV_8UC1);
+  mask(cv::Rect(mask_in_image.tl() - box_px.tl(), mask_in_image.size()))
+      .copyTo(placed(cv::Rect(mask_in_image.tl() - grown.tl(), mask_in_image.size())));
+  auto grownBy = [&](int radius_px) {
+    cv::Mat out;
+    cv::dilate(placed, out,
+               cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * radius_px + 1, 2 * radius_px + 1)));
+    return out;
+  };
+  const cv::Mat outer = grownBy(params.outer_px), inner = grownBy(params.inner_px);
+  for (int y = 0; y < grown.height; ++y)
+  {
+    const std::uint8_t* in_outer = outer.ptr<std::uint8_t>(y);
+    const std::uint8_t* in_inner = inner.ptr<std::uint8_t>(y);
+    for (int x = 0; x < grown.width; ++x)
+    {
+      if (!in_outer[x] || in_inner[x]) continue;
+      const int u = grown.x + x, v = grown.y + y;
+      const float z = frame.depthAt(u, v);
+      if (!(z > 0.0f)) continue;
+      const Eigen::Vector3d point = frame.camera.backProject(u, v, z);
+      if (plane.signedDistance(point) < -params.below_face_m) heights_m.push_back(support.heightAboveSupport(point));
+    }
+  }
+  return heights_m;
+}
+}  // namespace
+
+std::vector<double> levelsAroundFoot(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box_px,
+                                     const PlaneFit& plane, const UpDirection& support, double tolerance_m,
+                                     const FootLevelParams& params)
+{
+  std::vector<double> levels_m;
+  if (!support.has_support_plane || mask.empty() || !plane.valid || params.outer_px <= params.inner_px)
+    return levels_m;
+  std::vector<double> heights_m = lowerRingHeights(frame, mask, box_px, plane, support, params);
+  const std::size_t needed =
+      std::max<std::size_t>(params.min_pixels, static_cast<std::size_t>(std::ceil(params.min_share * heights_m.size())));
+  std::sort(heights_m.begin(), heights_m.end());
+  // The densest window of 2 x tolerance, again and again, each taking its
+  // pixels: the ring's floor first, then a deck or a lower box.
+  while (heights_m.size() >= needed)
+  {
+    std::size_t best_first = 0, best_count = 0;
+    for (std::size_t first = 0, last = 0; first < heights_m.size(); ++first)
+    {
+      while (last < heights_m.size() && heights_m[last] <= heights_m[first] + 2.0 * tolerance_m) ++last;
+      if (last - first > best_count)
+      {
+        best_count = last - first;
+        best_first = first;
+      }
+    }
+    if (best_count < needed) break;
+    const double level_m = heights_m[best_first + best_count / 2];
+    if (std::abs(level_m) > tolerance_m) levels_m.push_back(level_m);
+    heights_m.erase(heights_m.begin() + static_cast<std::ptrdiff_t>(best_first),
+                    heights_m.begin() + static_cast<std::ptrdiff_t>(best_first + best_count));
+  }
+  return levels_m;
+}
+}  // namespace brick_pose
