@@ -2,9 +2,12 @@
 // in-process topic of the chain and checks that what arrives downstream holds
 // the very objects that arrived upstream (same addresses, same pixel buffers),
 // i.e. that nothing was serialised or copied between the nodelets. Reports on
-// ~report (std_srvs/Trigger).
+// ~report (std_srvs/Trigger). ~frame_support (std_srvs/Trigger) tells the
+// supporting plane the last frame carried (from the ingestion's
+// support_frame), as "nx ny nz d", and fails when it carried none.
 
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 #include <nodelet/nodelet.h>
@@ -52,6 +55,7 @@ private:
     subscribers_.push_back(node.subscribe("candidates", 10, &ZeroCopyProbeNodelet::onCandidates, this));
     subscribers_.push_back(node.subscribe("registrations", 10, &ZeroCopyProbeNodelet::onRegistrations, this));
     report_ = getPrivateNodeHandle().advertiseService("report", &ZeroCopyProbeNodelet::onReport, this);
+    support_ = getPrivateNodeHandle().advertiseService("frame_support", &ZeroCopyProbeNodelet::onSupport, this);
   }
 
   void onFrame(const FrameMessageConstPtr& frame)
@@ -59,6 +63,7 @@ private:
     std::lock_guard<std::mutex> lock(mutex_);
     frames_.add(frame);
     if (frame->frame.rgb.empty()) fail("a frame arrived without pixels (was it deserialised?)");
+    last_support_ = frame->frame.support_in_camera;
   }
 
   void onSegments(const SegmentsMessageConstPtr& segments)
@@ -102,6 +107,23 @@ private:
     return true;
   }
 
+  bool onSupport(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response)
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    response.success = last_support_.has_value();
+    if (!last_support_)
+    {
+      response.message = frames_.count() > 0 ? "the last frame carried no supporting plane" : "no frame yet";
+      return true;
+    }
+    std::ostringstream text;
+    text.precision(9);
+    text << (*last_support_)[0] << " " << (*last_support_)[1] << " " << (*last_support_)[2] << " "
+         << (*last_support_)[3];
+    response.message = text.str();
+    return true;
+  }
+
   void fail(const std::string& what)
   {
     if (failure_.empty()) failure_ = what;
@@ -110,6 +132,8 @@ private:
   std::mutex mutex_;
   std::vector<ros::Subscriber> subscribers_;
   ros::ServiceServer report_;
+  ros::ServiceServer support_;
+  std::optional<Eigen::Vector4d> last_support_;
   RecentObjects<FrameMessage> frames_;
   RecentObjects<SegmentsMessage> segments_;
   RecentObjects<CandidatesMessage> candidates_;
