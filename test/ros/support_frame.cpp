@@ -6,26 +6,40 @@
 
 #include <gtest/gtest.h>
 
+#include <geometry_msgs/TransformStamped.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
-
-#include "brick_pose/BrickDetectionArray.h"
+#include <tf2_ros/static_transform_broadcaster.h>
 
 TEST(SupportFrame, FramesCarryThePlaneOfTheSupportFrame)
 {
-  const auto detections =
-      ros::topic::waitForMessage<brick_pose::BrickDetectionArray>("/brick_pose/detections", ros::Duration(60.0));
-  ASSERT_NE(detections, nullptr) << "the pipeline published no detections";
-  ASSERT_TRUE(ros::service::waitForService("/brick_pose/zero_copy_probe/frame_support", ros::Duration(10.0)));
+  // The deck lies at (0, 0.5, 1) m in the optical frame, turned 90 deg
+  // about x: its +z is the camera's -y (up in the image), and its plane,
+  // y = 0.5, is -y + 0.5 = 0.
+  tf2_ros::StaticTransformBroadcaster broadcaster;
+  geometry_msgs::TransformStamped deck;
+  deck.header.stamp = ros::Time::now();
+  deck.header.frame_id = "camera_color_optical_frame";
+  deck.child_frame_id = "pallet_deck";
+  deck.transform.translation.y = 0.5;
+  deck.transform.translation.z = 1.0;
+  deck.transform.rotation.x = std::sqrt(0.5);
+  deck.transform.rotation.w = std::sqrt(0.5);
+  broadcaster.sendTransform(deck);
+
+  ASSERT_TRUE(ros::service::waitForService("/brick_pose/zero_copy_probe/frame_support", ros::Duration(60.0)));
+  // Frames before the transform reached the ingestion stage carry none.
   std_srvs::Trigger support;
-  ASSERT_TRUE(ros::service::call("/brick_pose/zero_copy_probe/frame_support", support));
+  const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(60.0);
+  do
+  {
+    ros::WallDuration(0.2).sleep();
+    ASSERT_TRUE(ros::service::call("/brick_pose/zero_copy_probe/frame_support", support));
+  } while (!support.response.success && ros::WallTime::now() < give_up);
   ASSERT_TRUE(support.response.success) << support.response.message;
   std::istringstream numbers(support.response.message);
   double nx = NAN, ny = NAN, nz = NAN, d = NAN;
   numbers >> nx >> ny >> nz >> d;
-  // The deck (support_frame.test) lies at (0, 0.5, 1) m in the optical
-  // frame, turned 90 deg about x: its +z is the camera's -y (up in the
-  // image), and the plane y = 0.5 is -y + 0.5 = 0.
   EXPECT_NEAR(nx, 0.0, 1e-6) << support.response.message;
   EXPECT_NEAR(ny, -1.0, 1e-6) << support.response.message;
   EXPECT_NEAR(nz, 0.0, 1e-6) << support.response.message;
