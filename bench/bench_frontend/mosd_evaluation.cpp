@@ -13,6 +13,20 @@ namespace brick_pose
 {
 namespace frontend_bench
 {
+namespace
+{
+/// The scene's table, measured from its labels, as (n, d) with n . p + d = 0
+/// and n up (toward the camera); zero without a table.
+Eigen::Vector4d tablePlane(const eval::MosdTruth& truth)
+{
+  if (!truth.has_table) return Eigen::Vector4d::Zero();
+  const Eigen::Vector3d& normal = truth.table.normal;
+  Eigen::Vector4d plane;
+  plane << normal, -normal.dot(truth.table.centroid_m);
+  return plane;
+}
+}  // namespace
+
 MosdResults runMosd(const std::vector<ModeSpec>& modes, const Options& options)
 {
   MosdResults results;
@@ -62,8 +76,10 @@ MosdResults runMosd(const std::vector<ModeSpec>& modes, const Options& options)
       if (!with_up && !modes[m].colour_free) continue;
       for (std::size_t s = 0; s < scenes.size(); ++s)
       {
-        const FrontEnd front_end(catalogue,
-                                 frontEndParamsFor(modes[m], with_up ? truths[s].up : Eigen::Vector3d::Zero()));
+        // With up given, the table is given too, as a robot's tf would
+        // give the plane the boxes stand on (support_frame).
+        const FrontEnd front_end(catalogue, with_up ? frontEndParamsFor(modes[m], truths[s].up, tablePlane(truths[s]))
+                                                    : frontEndParamsFor(modes[m], Eigen::Vector3d::Zero()));
         const double cpu_start = bench::processCpuMs();
         const FrontEndResult result = front_end.process(scenes[s].frame);
         const double cpu_ms = bench::processCpuMs() - cpu_start;
