@@ -453,7 +453,9 @@ TEST(TopFaceCheck, AFlatBoxOnAPlinthTheCatalogueLacksIsNotTypedByItsHeightAboveT
   {
     EXPECT_FALSE(candidate.complete) << candidate.type_name << " " << candidate.length_m << " x " << candidate.width_m;
     if (std::abs(candidate.length_m - 0.30) < 0.03)
+    {
       EXPECT_NE(candidate.partial_reason.find("type uncertain"), std::string::npos) << candidate.partial_reason;
+    }
   }
 }
 
@@ -489,7 +491,10 @@ TEST(TopFaceCheck, AFlatBoxBetweenTallOnesEndsAtTheirWallsWhenNoLargerBoxCouldSt
   for (int k : {0, 2}) EXPECT_EQ(sure_flat->edge_kinds[k], EdgeKind::kStepUp) << "edge " << k;
   // The tall boxes' tops are also a flat box's on another (0.14 m): in doubt.
   for (const BrickCandidate& candidate : sure)
-    if (&candidate != sure_flat) EXPECT_FALSE(candidate.complete) << candidate.type_name;
+    if (&candidate != sure_flat)
+    {
+      EXPECT_FALSE(candidate.complete) << candidate.type_name;
+    }
 }
 
 TEST(TopFaceCheck, ABoxLyingOnItsSideIsNotACompleteTopWhenItsSideFaceHasNearlyTheTopsSize)

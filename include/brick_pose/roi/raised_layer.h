@@ -11,6 +11,20 @@
 
 namespace brick_pose
 {
+/// The pixels between `inner_px` and `outer_px` outside a mask, the ring
+/// around its outline: `ring` (CV_8UC1, non-zero on the ring) covers
+/// `box_px`, the mask's box grown by outer_px and clipped to the image;
+/// both empty when that box leaves the image.
+struct OutlineRing
+{
+  cv::Rect box_px;
+  cv::Mat ring;
+};
+
+/// The ring around `mask`, which lies at `box_px` in `frame`'s image.
+OutlineRing outlineRing(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box_px, int inner_px,
+                        int outer_px);
+
 /// What lies around a segment's outline, in a ring a few pixels out.
 struct OutlineSurroundings
 {

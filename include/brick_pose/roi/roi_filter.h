@@ -213,6 +213,19 @@ private:
   /// no support is given).
   bool faceMayGoOnBeneathWalls(const RgbdFrame& frame, const FrameContext& context,
                                const BrickCandidate& candidate) const;
+  /// A face's height above the given support (m), and the heights of the
+  /// levels seen around its foot that it may also stand on.
+  struct StandingHeight
+  {
+    double height_m;
+    std::vector<double> levels_m;
+  };
+  /// The face's StandingHeight when it can tell types apart: a support is
+  /// given, height_above_support_tolerance_m is on, and one of `shown` (the
+  /// tops the face shows) could stand there; otherwise none.
+  std::optional<StandingHeight> standingHeight(const RgbdFrame& frame, const FrameContext& context,
+                                               const BrickCandidate& candidate,
+                                               const std::vector<const BrickType*>& shown) const;
   /// Narrows a colour-free face's types (`fitting`) and their rivals to
   /// those that could stand at the face's height above the supporting
   /// plane (see height_above_support_tolerance_m); unchanged without a

@@ -20,6 +20,10 @@ namespace brick_pose
 /// sides within 6 mm of the catalogue height and tops within about 12 mm.
 constexpr double kTypeMarginM = 0.015;
 
+/// Whether `type`'s top (or a lying variant's face up) is a face of
+/// `length_m` x `width_m`, each within `tolerance_m`.
+bool showsTop(const BrickType& type, double length_m, double width_m, double tolerance_m);
+
 /// The type in `fitting` closest to a face of `length_m` x `width_m` and,
 /// where sides are seen to their foot, to their height. Sides reaching the
 /// supporting plane are the surest; without one, a side ending on another

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include <opencv2/imgproc.hpp>
+#include "brick_pose/roi/raised_layer.h"
 
 namespace brick_pose
 {
@@ -15,30 +15,14 @@ std::vector<double> lowerRingHeights(const RgbdFrame& frame, const cv::Mat& mask
                                      const PlaneFit& plane, const UpDirection& support, const FootLevelParams& params)
 {
   std::vector<double> heights_m;
-  const cv::Rect image(0, 0, frame.width_px(), frame.height_px());
-  const int reach = params.outer_px;
-  const cv::Rect grown =
-      cv::Rect(box_px.x - reach, box_px.y - reach, box_px.width + 2 * reach, box_px.height + 2 * reach) & image;
-  const cv::Rect mask_in_image = box_px & image;
-  if (grown.area() == 0 || mask_in_image.area() == 0) return heights_m;
-  cv::Mat placed = cv::Mat::zeros(grown.size(), CV_8UC1);
-  mask(cv::Rect(mask_in_image.tl() - box_px.tl(), mask_in_image.size()))
-      .copyTo(placed(cv::Rect(mask_in_image.tl() - grown.tl(), mask_in_image.size())));
-  auto grownBy = [&](int radius_px) {
-    cv::Mat out;
-    cv::dilate(placed, out,
-               cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * radius_px + 1, 2 * radius_px + 1)));
-    return out;
-  };
-  const cv::Mat outer = grownBy(params.outer_px), inner = grownBy(params.inner_px);
-  for (int y = 0; y < grown.height; ++y)
+  const OutlineRing ring = outlineRing(frame, mask, box_px, params.inner_px, params.outer_px);
+  for (int y = 0; y < ring.ring.rows; ++y)
   {
-    const std::uint8_t* in_outer = outer.ptr<std::uint8_t>(y);
-    const std::uint8_t* in_inner = inner.ptr<std::uint8_t>(y);
-    for (int x = 0; x < grown.width; ++x)
+    const std::uint8_t* on_ring = ring.ring.ptr<std::uint8_t>(y);
+    for (int x = 0; x < ring.ring.cols; ++x)
     {
-      if (!in_outer[x] || in_inner[x]) continue;
-      const int u = grown.x + x, v = grown.y + y;
+      if (!on_ring[x]) continue;
+      const int u = ring.box_px.x + x, v = ring.box_px.y + y;
       const float z = frame.depthAt(u, v);
       if (!(z > 0.0f)) continue;
       const Eigen::Vector3d point = frame.camera.backProject(u, v, z);

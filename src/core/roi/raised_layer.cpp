@@ -17,32 +17,39 @@ cv::Mat dilated(const cv::Mat& mask, int radius_px)
 }
 }  // namespace
 
+OutlineRing outlineRing(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box_px, int inner_px,
+                        int outer_px)
+{
+  OutlineRing result;
+  const cv::Rect image(0, 0, frame.width_px(), frame.height_px());
+  const cv::Rect grown =
+      cv::Rect(box_px.x - outer_px, box_px.y - outer_px, box_px.width + 2 * outer_px, box_px.height + 2 * outer_px) &
+      image;
+  const cv::Rect mask_in_image = box_px & image;
+  if (grown.area() == 0 || mask_in_image.area() == 0) return result;
+  cv::Mat placed = cv::Mat::zeros(grown.size(), CV_8UC1);
+  mask(cv::Rect(mask_in_image.tl() - box_px.tl(), mask_in_image.size()))
+      .copyTo(placed(cv::Rect(mask_in_image.tl() - grown.tl(), mask_in_image.size())));
+  result.box_px = grown;
+  result.ring = dilated(placed, outer_px);
+  result.ring.setTo(0, dilated(placed, inner_px));
+  return result;
+}
+
 OutlineSurroundings measureOutlineSurroundings(const RgbdFrame& frame, const Segment& segment, const PlaneFit& plane,
                                                double step_m, int inner_px, int outer_px)
 {
   OutlineSurroundings surroundings;
   if (segment.mask.empty() || !plane.valid || outer_px <= inner_px) return surroundings;
-  // The segment's box grown by the ring's width, within the image.
-  const cv::Rect image(0, 0, frame.width_px(), frame.height_px());
-  const cv::Rect& box = segment.bounding_box_px;
-  const cv::Rect grown = cv::Rect(box.x - outer_px, box.y - outer_px, box.width + 2 * outer_px,
-                                  box.height + 2 * outer_px) &
-                         image;
-  if (grown.area() == 0) return surroundings;
-  cv::Mat mask = cv::Mat::zeros(grown.size(), CV_8UC1);
-  const cv::Rect mask_in_image = box & image;
-  segment.mask(cv::Rect(mask_in_image.tl() - box.tl(), mask_in_image.size()))
-      .copyTo(mask(cv::Rect(mask_in_image.tl() - grown.tl(), mask_in_image.size())));
-  const cv::Mat outer = dilated(mask, outer_px), inner = dilated(mask, inner_px);
-  for (int y = 0; y < grown.height; ++y)
+  const OutlineRing ring = outlineRing(frame, segment.mask, segment.bounding_box_px, inner_px, outer_px);
+  for (int y = 0; y < ring.ring.rows; ++y)
   {
-    const std::uint8_t* in_outer = outer.ptr<std::uint8_t>(y);
-    const std::uint8_t* in_inner = inner.ptr<std::uint8_t>(y);
-    const int v = grown.y + y;
-    for (int x = 0; x < grown.width; ++x)
+    const std::uint8_t* on_ring = ring.ring.ptr<std::uint8_t>(y);
+    const int v = ring.box_px.y + y;
+    for (int x = 0; x < ring.ring.cols; ++x)
     {
-      if (!in_outer[x] || in_inner[x]) continue;
-      const int u = grown.x + x;
+      if (!on_ring[x]) continue;
+      const int u = ring.box_px.x + x;
       const float z = frame.depthAt(u, v);
       if (!(z > 0.0f)) continue;
       const double offset_m = plane.signedDistance(frame.camera.backProject(u, v, z));

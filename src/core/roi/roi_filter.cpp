@@ -1000,21 +1000,20 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
 std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const FrameContext& context,
                                                  BrickCandidate& candidate) const
 {
-  auto fits = [&](const BrickType& type, double tolerance_m) {
-    return std::abs(candidate.length_m - type.length_m) <= tolerance_m &&
-           std::abs(candidate.width_m - type.width_m) <= tolerance_m;
+  auto fits = [&](const BrickType& type) {
+    return showsTop(type, candidate.length_m, candidate.width_m, params_.classification_tolerance_m);
   };
   std::vector<const BrickType*> fitting;
   double tallest_m = 0.0;
   for (const BrickType& type : catalogue_.types())
-    if (fits(type, params_.classification_tolerance_m))
+    if (fits(type))
     {
       fitting.push_back(&type);
       tallest_m = std::max(tallest_m, type.height_m);
     }
   std::vector<const BrickType*> rivals = fitting;
   for (const BrickType& variant : lying_variants_)
-    if (fits(variant, params_.classification_tolerance_m))
+    if (fits(variant))
     {
       rivals.push_back(&variant);
       tallest_m = std::max(tallest_m, variant.height_m);
@@ -1082,30 +1081,40 @@ bool RoiFilter::faceMayGoOnBeneathWalls(const RgbdFrame& frame, const FrameConte
                                          : std::abs(across_m - candidate.width_m) <= tolerance_m;
     return length_fits && width_fits;
   };
-  auto shows = [&](const BrickType& type) {
-    return std::abs(type.length_m - candidate.length_m) <= tolerance_m &&
-           std::abs(type.width_m - candidate.width_m) <= tolerance_m;
-  };
   std::vector<const BrickType*> larger, own;
   auto consider = [&](const BrickType& type) {
     if (extends(type.length_m, type.width_m) || extends(type.width_m, type.length_m)) larger.push_back(&type);
-    if (shows(type)) own.push_back(&type);
+    if (showsTop(type, candidate.length_m, candidate.width_m, tolerance_m)) own.push_back(&type);
   };
   for (const BrickType& type : catalogue_.types()) consider(type);
   for (const BrickType& variant : lying_variants_) consider(variant);
   // No catalogue top is larger that way: nothing rests on the face, which
   // ends at the walls.
   if (larger.empty()) return false;
-  // Only the face's height above a given support rules those tops out,
-  // once the face's own types could stand there (else the support is not
-  // what it stands on).
-  const double height_tolerance_m = params_.height_above_support_tolerance_m;
-  if (!(height_tolerance_m > 0.0) || !context.up.support_given) return true;
+  // Only the face's height above a given support rules those tops out.
+  const std::optional<StandingHeight> standing = standingHeight(frame, context, candidate, own);
+  if (!standing) return true;
+  return !typesStandingAt(larger, standing->height_m, standing->levels_m, stack_heights_,
+                          params_.height_above_support_tolerance_m)
+              .empty();
+}
+
+std::optional<RoiFilter::StandingHeight> RoiFilter::standingHeight(const RgbdFrame& frame,
+                                                                   const FrameContext& context,
+                                                                   const BrickCandidate& candidate,
+                                                                   const std::vector<const BrickType*>& shown) const
+{
+  const double tolerance_m = params_.height_above_support_tolerance_m;
+  if (!(tolerance_m > 0.0) || !context.up.support_given) return std::nullopt;
   const double height_m = context.up.heightAboveSupport(candidate.centroid_m);
-  if (typesStandingAt(own, height_m, {}, stack_heights_, height_tolerance_m).empty()) return true;
-  const std::vector<double> levels_m = levelsAroundFoot(frame, candidate.mask, candidate.bounding_box_px,
-                                                        candidate.plane, context.up, height_tolerance_m);
-  return !typesStandingAt(larger, height_m, levels_m, stack_heights_, height_tolerance_m).empty();
+  // None of the tops it shows could stand there: the face stands on
+  // something else (a plinth, the given plane is the floor under a
+  // pallet), and its height says nothing.
+  if (typesStandingAt(shown, height_m, {}, stack_heights_, tolerance_m).empty()) return std::nullopt;
+  // A deck or a plinth seen around the face's foot is one more place it
+  // may stand: it may only widen what the face can be.
+  return StandingHeight{height_m, levelsAroundFoot(frame, candidate.mask, candidate.bounding_box_px,
+                                                   candidate.plane, context.up, tolerance_m)};
 }
 
 void RoiFilter::keepTypesStandingThere(const RgbdFrame& frame, const FrameContext& context,
@@ -1113,19 +1122,12 @@ void RoiFilter::keepTypesStandingThere(const RgbdFrame& frame, const FrameContex
                                        std::vector<const BrickType*>& fitting,
                                        std::vector<const BrickType*>& rivals) const
 {
-  if (!(params_.height_above_support_tolerance_m > 0.0) || !context.up.support_given || rivals.size() < 2) return;
-  const double tolerance_m = params_.height_above_support_tolerance_m;
-  const double height_m = context.up.heightAboveSupport(candidate.centroid_m);
-  std::vector<const BrickType*> standing = typesStandingAt(rivals, height_m, {}, stack_heights_, tolerance_m);
-  // None could stand there: the face stands on something else (a plinth,
-  // the given plane is the floor under a pallet), and its height says
-  // nothing.
-  if (standing.empty()) return;
-  // A deck or a plinth seen around the face's foot is one more place it
-  // may stand: it may only widen what the face can be.
-  const std::vector<double> levels_m =
-      levelsAroundFoot(frame, candidate.mask, candidate.bounding_box_px, candidate.plane, context.up, tolerance_m);
-  if (!levels_m.empty()) standing = typesStandingAt(rivals, height_m, levels_m, stack_heights_, tolerance_m);
+  if (rivals.size() < 2) return;
+  const std::optional<StandingHeight> height = standingHeight(frame, context, candidate, rivals);
+  if (!height) return;
+  const std::vector<const BrickType*> standing = typesStandingAt(rivals, height->height_m, height->levels_m,
+                                                                 stack_heights_,
+                                                                 params_.height_above_support_tolerance_m);
   if (standing.size() == rivals.size()) return;
   std::vector<const BrickType*> fitting_standing;
   for (const BrickType* type : fitting)

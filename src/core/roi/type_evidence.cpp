@@ -44,6 +44,11 @@ bool sameShape(const BrickType& a, const BrickType& b)
 }
 }  // namespace
 
+bool showsTop(const BrickType& type, double length_m, double width_m, double tolerance_m)
+{
+  return std::abs(length_m - type.length_m) <= tolerance_m && std::abs(width_m - type.width_m) <= tolerance_m;
+}
+
 const BrickType* closestType(const std::vector<const BrickType*>& fitting, double length_m, double width_m,
                              std::vector<SideFaceEvidence> sides)
 {
