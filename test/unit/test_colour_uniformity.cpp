@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "brick_pose/roi/colour_uniformity.h"
+#include "brick_pose/roi/face_grey.h"
 
 namespace brick_pose
 {
@@ -112,6 +113,36 @@ TEST(ColourUniformity, MeanGreyLevelReadsTheMaskedPixelsInsideTheImage)
   // Nothing of it in the image, or no mask: 0.
   EXPECT_EQ(meanGreyLevel(frame, mask, cv::Rect(120, 10, 40, 40)), 0.0);
   EXPECT_EQ(meanGreyLevel(frame, cv::Mat(), cv::Rect(60, 10, 40, 40)), 0.0);
+}
+
+TEST(FaceGrey, WeighsTheChannelsByTheFacesColour)
+{
+  // A grey face: the mean of the three channels.
+  const FaceGrey grey = FaceGrey::ofColour(cv::Vec3d(80, 80, 80));
+  EXPECT_NEAR(grey(cv::Vec3b(30, 60, 90)), 60.0, 1e-9);
+  // A red face (B, G, R = 10, 10, 80): a line that shades its red by 20 reads
+  // about 20 deep, not the 6.7 of the mean; a grey pixel reads its level.
+  const FaceGrey red = FaceGrey::ofColour(cv::Vec3d(10, 10, 80));
+  EXPECT_NEAR(red(cv::Vec3b(10, 10, 80)) - red(cv::Vec3b(10, 10, 60)), 20.0 * 0.8, 1e-9);
+  EXPECT_NEAR(red(cv::Vec3b(50, 50, 50)), 50.0, 1e-9);
+  // A black face has no colour to weigh by; nor has a sum of no pixels.
+  EXPECT_NEAR(FaceGrey::ofColour(cv::Vec3d(0, 0, 0))(cv::Vec3b(30, 60, 90)), 60.0, 1e-9);
+  EXPECT_NEAR(FaceColourSum().grey()(cv::Vec3b(30, 60, 90)), 60.0, 1e-9);
+  FaceColourSum sum;
+  sum.add(cv::Vec3b(0, 0, 100));
+  sum.add(cv::Vec3b(0, 0, 60));
+  EXPECT_NEAR(sum.grey().weights()[2], 1.0, 1e-12);
+}
+
+TEST(ColourUniformity, FaceGreyLevelIsTheMeanColourReadInItsOwnWeights)
+{
+  RgbdFrame frame;
+  frame.rgb = cv::Mat(100, 100, CV_8UC3, cv::Scalar(10, 10, 80));
+  const cv::Mat mask(40, 40, CV_8UC1, cv::Scalar(255));
+  // (10*10 + 10*10 + 80*80) / 100 = 66, where the mean grey level is 33.3.
+  EXPECT_NEAR(faceGreyLevel(frame, mask, cv::Rect(10, 10, 40, 40)), 66.0, 1e-9);
+  EXPECT_NEAR(meanGreyLevel(frame, mask, cv::Rect(10, 10, 40, 40)), 100.0 / 3.0, 1e-9);
+  EXPECT_EQ(faceGreyLevel(frame, mask, cv::Rect(120, 10, 40, 40)), 0.0);
 }
 }  // namespace
 }  // namespace brick_pose

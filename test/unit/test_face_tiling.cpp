@@ -68,12 +68,14 @@ void expectWholeBricks(const FrontEndResult& result, const test::TouchingPlatesS
 }
 
 /// Plain plates whose seams and outer rims are dark lines 2 mm wide, 40
-/// grey levels darker (the rounded edges of plain bricks).
+/// grey levels darker (the rounded edges of plain bricks: shading, which
+/// darkens each channel in proportion to the plate's colour).
 void darkenSeamsAndRims(test::TouchingPlatesScene& scene)
 {
   scene.line_darkening = 40.0;
   scene.rim_darkening = 40.0;
   scene.line_half_width_m = 0.002;
+  scene.lines_are_shading = true;
 }
 
 /// Two plain greens side by side, dark seams and rims, the layer's depth
@@ -455,6 +457,38 @@ TEST(FaceTiling, ColourFreeBlueSizedFaceOfFourRedsInALowLightIsCutAtClearLines)
   const FrontEndResult faint = front_end.process(reds.frame());
   EXPECT_EQ(completeCount(faint), 0);
   for (const BrickCandidate& c : faint.candidates) EXPECT_FALSE(c.partial_reason.empty());
+}
+
+/// Seams as shading (mean grey levels) and every channel's own noise (grey
+/// levels), for dim red plates (mean grey 37). Read in the mean of the
+/// channels these seams were no clear cut; read in the plates' own colour
+/// they are.
+constexpr double kSeamShading = 11.0;
+constexpr double kChannelNoise = 12.0;
+
+TEST(FaceTiling, ColourFreeRedsInALowLightAreCutAtSeamsTheirOwnColourShows)
+{
+  // Four dim red plates end to end (a blue's top). Their seams are shading:
+  // a share of what each channel reflects, so the red channel alone holds
+  // them, under noise of its own in every channel. Read in the mean of the
+  // three channels, the line is a third of its depth in the red under the
+  // green's and blue's noise as well, and no cut is clear enough to make a
+  // red of; read in the plates' own colour (FaceGrey), every seam is.
+  test::TouchingPlatesScene reds = lowLightRow(1, 1.2, 0.0);
+  reds.plates.clear();
+  for (int k = 0; k < 4; ++k) reds.plates.push_back({{-0.6 + 0.3 * k, -0.1}, {-0.3 + 0.3 * k, 0.1}, {14, 12, 84}});
+  reds.line_darkening = kSeamShading;
+  reds.lines_are_shading = true;
+  reds.colour_noise = kChannelNoise;
+  reds.noise_per_channel = true;
+  const FrontEnd front_end(BrickCatalogue::mbzirc2020(), colourFreeParams());
+  ASSERT_NO_FATAL_FAILURE(expectWholeBricks(front_end.process(reds.frame()), reds, 4u, "red"));
+
+  // The cuts are the seams': with none drawn the same face is one blue.
+  reds.line_darkening = 0.0;
+  const FrontEndResult seamless = front_end.process(reds.frame());
+  ASSERT_EQ(seamless.candidates.size(), 1u);
+  EXPECT_EQ(seamless.candidates.front().type_name, "blue");
 }
 
 TEST(FaceTiling, ColourFreeTouchingBricksWithAFattenedOutlineAreCutAtTheirSeam)
@@ -854,6 +888,7 @@ TEST(PlanePixelSamples, ReadsEveryPixelAsComputedAndStoresOnlyThoseNearTheOutlin
   for (const auto& outline : outlines)
   {
     const PlanePixelSamples samples(frame, plane, outline, margin_px);
+    for (const double weight : samples.faceGrey().weights()) EXPECT_NEAR(weight, 1.0 / 3.0, 0.02);
     cv::Mat inside(480, 640, CV_8UC1, cv::Scalar(0));
     std::vector<cv::Point> polygon;
     for (const Eigen::Vector2d& p : outline) polygon.emplace_back(cvRound(p.x()), cvRound(p.y()));
@@ -866,7 +901,9 @@ TEST(PlanePixelSamples, ReadsEveryPixelAsComputedAndStoresOnlyThoseNearTheOutlin
         double offset_m = 0.0, grey = 0.0;
         samples.read(u, v, offset_m, grey);
         const cv::Vec3b rgb = frame.rgb.at<cv::Vec3b>(v, u);
-        ASSERT_DOUBLE_EQ(grey, (rgb[0] + rgb[1] + rgb[2]) / 3.0) << u << " " << v;
+        // In the face's own grey (its colour here is noise: near the mean of
+        // the channels), stored in single precision.
+        ASSERT_NEAR(grey, samples.faceGrey()(rgb), 1e-4) << u << " " << v;
         const float z = frame.depthAt(u, v);
         if (std::isnan(z))
         {

@@ -50,6 +50,14 @@ struct TouchingPlatesScene
   /// Grey-level noise added to every colour channel of the plates (one
   /// draw per pixel, as a sensor's luminance noise).
   double colour_noise = 0.0;
+  /// As a camera draws them: the seam and rim lines are shading, which
+  /// scales what the plate reflects (their darkening, in mean grey levels,
+  /// is shared among the channels in proportion to the plate's colour: on a
+  /// red plate mostly the red); otherwise every channel loses as much.
+  bool lines_are_shading = false;
+  /// colour_noise drawn for each channel on its own (every photosite has
+  /// its own noise), rather than once for all three.
+  bool noise_per_channel = false;
   /// D4xx stereo fattens a foreground over its steps: this far (m, on the
   /// layer's plane) beyond the plates' outer edges the depth is still the
   /// layer's while the colour is the background's.
@@ -171,8 +179,15 @@ struct TouchingPlatesScene
           double darkening = seam_m < line_half_width_m ? line_darkening : 0.0;
           if (rim_darkening > 0.0 && onRim(local.head<2>(), plate, line_half_width_m))
             darkening = std::max(darkening, rim_darkening);
-          if (colour_noise > 0.0) darkening -= colour_noise * noise(generator);
-          for (int c = 0; c < 3; ++c) colour[c] = cv::saturate_cast<std::uint8_t>(colour[c] - darkening);
+          const double mean_level = (plate.rgb[0] + plate.rgb[1] + plate.rgb[2]) / 3.0;
+          const double kept = lines_are_shading && mean_level > 0.0 ? 1.0 - darkening / mean_level : 1.0;
+          if (lines_are_shading) darkening = 0.0;
+          if (colour_noise > 0.0 && !noise_per_channel) darkening -= colour_noise * noise(generator);
+          for (int c = 0; c < 3; ++c)
+          {
+            const double own_noise = noise_per_channel ? colour_noise * noise(generator) : 0.0;
+            colour[c] = cv::saturate_cast<std::uint8_t>(kept * colour[c] - darkening + own_noise);
+          }
           break;
         }
         const double outside_m = z == background_z && hit.z() < background_z ? distanceToPlates(local.head<2>()) : -1.0;

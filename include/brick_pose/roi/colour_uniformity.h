@@ -55,4 +55,10 @@ ColourUniformity measureColourUniformity(const RgbdFrame& frame, const cv::Mat& 
 /// `mask` placed at `box` in `frame`; 0 when none is in the image. How
 /// bright a face is sets how deep a seam across it can be.
 double meanGreyLevel(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box);
+
+/// The same pixels' mean level in the grey their seams are read in
+/// (FaceGrey: weighted by their own mean colour); 0 when none is in the
+/// image. A seam's line scales with this level: on a saturated face it is
+/// up to three times the mean grey level.
+double faceGreyLevel(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box);
 }  // namespace brick_pose

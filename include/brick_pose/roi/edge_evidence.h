@@ -89,7 +89,8 @@ struct EdgeEvidenceParams
   double min_depth_fraction = 0.3;
   /// Seam tests on a coplanar continuation: a groove (the middle of the
   /// profile farther than both sides) at least this deep, or a dark line at
-  /// least this many grey levels darker than both sides; each also at least
+  /// least this many grey levels darker than both sides (grey read in the
+  /// face's own colour, FaceGrey); each also at least
   /// seam_noise_factor standard errors of the along-edge scatter. (Lines
   /// count either way: darker or brighter than both sides.)
   double min_groove_m = 0.0008;

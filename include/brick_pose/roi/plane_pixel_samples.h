@@ -14,6 +14,7 @@
 
 #include "brick_pose/frame/rgbd_frame.h"
 #include "brick_pose/geometry/plane_fit.h"
+#include "brick_pose/roi/face_grey.h"
 
 namespace brick_pose
 {
@@ -30,21 +31,21 @@ public:
                     int margin_px);
 
   /// The pixel (u, v), which must lie in the image: its signed distance from
-  /// the plane (NaN without depth) and its grey level (the mean of the three
-  /// channels). Pixels not computed ahead are computed here, with the same
-  /// result.
+  /// the plane (NaN without depth) and its grey level in the face's own
+  /// colour (FaceGrey, weighted by the mean colour of the computed pixels
+  /// within a centimetre of the plane). Pixels not computed ahead are
+  /// computed here, with the same result.
   void read(int u_px, int v_px, double& offset_m, double& grey) const
   {
     // Inline: the seam evidence reads a face's pixels about ten times each.
     if (std::size_t at = 0; storedAt(u_px, v_px, at))
     {
       offset_m = offset_m_[at];
-      grey = grey_sum_[at] / 3.0;
+      grey = grey_[at];
       return;
     }
-    int grey_sum = 0;
-    compute(u_px, v_px, offset_m, grey_sum);
-    grey = grey_sum / 3.0;
+    offset_m = offsetM(u_px, v_px);
+    grey = face_grey_(frame_->rgb.ptr<cv::Vec3b>(v_px)[u_px]);
   }
 
   /// Whether (u, v) was computed ahead.
@@ -55,6 +56,8 @@ public:
   }
   /// How many pixels were computed ahead.
   std::size_t storedCount() const { return offset_m_.size(); }
+  /// The weighting grey levels are read in.
+  const FaceGrey& faceGrey() const { return face_grey_; }
 
 private:
   /// Row v's stored pixels: u in [u_begin, u_end), from offset_m_[first] on.
@@ -75,13 +78,15 @@ private:
     return true;
   }
 
-  void compute(int u_px, int v_px, double& offset_m, int& grey_sum) const;
+  /// Signed distance of the pixel's depth from the plane; NaN without depth.
+  double offsetM(int u_px, int v_px) const;
 
   const RgbdFrame* frame_ = nullptr;
   PlaneFit plane_;
   int v_begin_ = 0;
   std::vector<RowSpan> rows_;  ///< rows v_begin_, v_begin_ + 1, ...
   std::vector<double> offset_m_;
-  std::vector<std::uint16_t> grey_sum_;
+  std::vector<float> grey_;
+  FaceGrey face_grey_;
 };
 }  // namespace brick_pose

@@ -81,9 +81,10 @@ struct RoiFilterParams
   /// so that a line along its cut is a seam (see colour_uniformity.h).
   ColourUniformityParams uniformity;
   /// On a plain face (see colour_uniformity.h) darker than grey level
-  /// edges.min_line_contrast / plain_seam_line_share (100 by default: a red
-  /// plate, a face in low light), a line is a seam, for the tiler and for
-  /// the edges of its tiles, from this share of the face's mean grey level
+  /// edges.min_line_contrast / plain_seam_line_share (100 by default: a
+  /// face in low light), a line is a seam, for the tiler and for the edges
+  /// of its tiles, from this share of the face's level in the grey its
+  /// lines are read in (faceGreyLevel: weighted by its own colour)
   /// (and at least one level) instead of from edges.min_line_contrast: a
   /// seam's shading is a share of the light the face sends back (its
   /// colour, the lighting, the camera's exposure), so a dark face's seams
@@ -292,8 +293,8 @@ private:
   /// cut is seen (a groove or a line), or none.
   FaceTiling tileBySeenSeams(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
                              const std::vector<const BrickType*>& types, const SeamReading& seams) const;
-  /// How the tiler reads a face's seams, given its uniformity and mean grey
-  /// level `face_grey`: on a plain face a line is a seam, read against its
+  /// How the tiler reads a face's seams, given its uniformity and its level
+  /// `face_grey` in the grey its lines are read in (faceGreyLevel): on a plain face a line is a seam, read against its
   /// light (plain_seam_line_share) and confirmed along the lines cuts share
   /// (FaceTilingParams::confirm_along_lines); elsewhere params_ as they are.
   SeamReading seamReadingFor(const ColourUniformity& face_uniformity, double face_grey) const;

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
 
 #include "brick_pose/common/statistics.h"
+#include "brick_pose/roi/face_grey.h"
 
 namespace brick_pose
 {
@@ -87,13 +89,31 @@ ColourUniformity measureColourUniformity(const RgbdFrame& frame, const cv::Mat& 
   result.uniform = result.sigma_grey <= params.max_sigma_grey && result.outlier_fraction <= params.max_outlier_fraction;
   return result;
 }
-double meanGreyLevel(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box)
+namespace
+{
+/// The mean colour (B, G, R) of the pixels of `mask` placed at `box`;
+/// nothing when none is in the image.
+std::optional<cv::Vec3d> meanColour(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box)
 {
   const cv::Rect inside = box & cv::Rect(0, 0, frame.width_px(), frame.height_px());
-  if (inside.area() == 0 || mask.empty()) return 0.0;
+  if (inside.area() == 0 || mask.empty()) return std::nullopt;
   const cv::Mat inside_mask = mask(cv::Rect(inside.tl() - box.tl(), inside.size()));
-  if (cv::countNonZero(inside_mask) == 0) return 0.0;
-  const cv::Scalar rgb = cv::mean(frame.rgb(inside), inside_mask);
-  return (rgb[0] + rgb[1] + rgb[2]) / 3.0;
+  if (cv::countNonZero(inside_mask) == 0) return std::nullopt;
+  const cv::Scalar bgr = cv::mean(frame.rgb(inside), inside_mask);
+  return cv::Vec3d(bgr[0], bgr[1], bgr[2]);
+}
+}  // namespace
+
+double meanGreyLevel(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box)
+{
+  const std::optional<cv::Vec3d> bgr = meanColour(frame, mask, box);
+  return bgr ? ((*bgr)[0] + (*bgr)[1] + (*bgr)[2]) / 3.0 : 0.0;
+}
+
+double faceGreyLevel(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box)
+{
+  const std::optional<cv::Vec3d> bgr = meanColour(frame, mask, box);
+  if (!bgr) return 0.0;
+  return FaceGrey::ofColour(*bgr)(*bgr);
 }
 }  // namespace brick_pose

@@ -8,6 +8,7 @@
 #include "brick_pose/common/errors.h"
 #include "brick_pose/common/rounding.h"
 #include "brick_pose/common/statistics.h"
+#include "brick_pose/roi/face_grey.h"
 
 namespace brick_pose
 {
@@ -17,6 +18,9 @@ constexpr float kMissing = std::numeric_limits<float>::quiet_NaN();
 /// Where the profile has no depth beyond the edge, the first depth out to
 /// this many probe widths stands in.
 constexpr int kFarReachFactor = 6;
+/// Pixels this close to the face's plane give the colour grey levels are
+/// weighted by (FaceGrey): the face, or a neighbour on its plane.
+constexpr double kOnFaceM = 0.01;
 
 /// Depth (as signed distance from the face's plane) and grey level sampled
 /// on a grid of rows (positions along the edge) x columns (offsets across
@@ -96,6 +100,10 @@ Profile sampleProfile(const ProfileLine& line, int min_offset, int max_offset, i
   profile.offset_m.assign(cells, kMissing);
   profile.grey.assign(cells, kMissing);
   profile.in_image.assign(cells, 0);
+  // The colours first: the grey levels are read in the colour of the
+  // pixels on the face's plane (FaceGrey).
+  std::vector<cv::Vec3b> colours(cells);
+  FaceColourSum on_face;
   for (int row = 0; row < profile.rows; ++row)
   {
     const Eigen::Vector2d on_edge = line.onEdge(row);
@@ -106,11 +114,18 @@ Profile sampleProfile(const ProfileLine& line, int min_offset, int max_offset, i
       const int cell = profile.at(row, offset);
       profile.in_image[cell] = 1;
       if (offset > sampled_max_offset) continue;
-      const cv::Vec3b& rgb = line.frame.rgb.ptr<cv::Vec3b>(v)[u];
-      profile.grey[cell] = (static_cast<float>(rgb[0]) + rgb[1] + rgb[2]) / 3.0f;
+      colours[cell] = line.frame.rgb.ptr<cv::Vec3b>(v)[u];
       profile.offset_m[cell] = static_cast<float>(line.planeOffsetM(u, v));
+      if (std::abs(profile.offset_m[cell]) < kOnFaceM) on_face.add(colours[cell]);
     }
   }
+  const FaceGrey grey = on_face.grey();
+  for (int row = 0; row < profile.rows; ++row)
+    for (int offset = min_offset; offset <= sampled_max_offset && offset <= max_offset; ++offset)
+    {
+      const int cell = profile.at(row, offset);
+      if (profile.in_image[cell]) profile.grey[cell] = static_cast<float>(grey(colours[cell]));
+    }
   return profile;
 }
 

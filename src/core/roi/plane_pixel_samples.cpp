@@ -9,6 +9,10 @@ namespace brick_pose
 {
 namespace
 {
+/// Pixels this close to the plane are the face's (or a neighbour's on it):
+/// their mean colour weights the grey levels. Depth noise at 2 m is a few mm.
+constexpr double kOnFaceM = 0.01;
+
 /// The u extent of the convex polygon over rows [y_lo, y_hi]; false when it
 /// does not reach them. The extent of a convex region in a band is reached
 /// on its boundary, so clipping each side to the band finds it.
@@ -95,29 +99,35 @@ PlanePixelSamples::PlanePixelSamples(const RgbdFrame& frame, const PlaneFit& pla
     }
     total += static_cast<std::size_t>(span.u_end - span.u_begin);
   }
-  // Filled in order, never zeroed first.
+  // Filled in order, never zeroed first. The depth first: the pixels on the
+  // face give the colour the grey levels are weighted by.
   offset_m_.reserve(total);
-  grey_sum_.reserve(total);
+  FaceColourSum on_face;
   for (int v = v_begin_; v < v_end; ++v)
   {
     const RowSpan& span = rows_[static_cast<std::size_t>(v - v_begin_)];
+    const cv::Vec3b* row = frame.rgb.ptr<cv::Vec3b>(v);
     for (int u = span.u_begin; u < span.u_end; ++u)
     {
-      double offset_m = 0.0;
-      int grey_sum = 0;
-      compute(u, v, offset_m, grey_sum);
+      const double offset_m = offsetM(u, v);
       offset_m_.push_back(offset_m);
-      grey_sum_.push_back(static_cast<std::uint16_t>(grey_sum));
+      if (std::abs(offset_m) < kOnFaceM) on_face.add(row[u]);
     }
+  }
+  face_grey_ = on_face.grey();
+  grey_.reserve(total);
+  for (int v = v_begin_; v < v_end; ++v)
+  {
+    const RowSpan& span = rows_[static_cast<std::size_t>(v - v_begin_)];
+    const cv::Vec3b* row = frame.rgb.ptr<cv::Vec3b>(v);
+    for (int u = span.u_begin; u < span.u_end; ++u) grey_.push_back(static_cast<float>(face_grey_(row[u])));
   }
 }
 
-void PlanePixelSamples::compute(int u_px, int v_px, double& offset_m, int& grey_sum) const
+double PlanePixelSamples::offsetM(int u_px, int v_px) const
 {
-  const cv::Vec3b& rgb = frame_->rgb.ptr<cv::Vec3b>(v_px)[u_px];
-  grey_sum = rgb[0] + rgb[1] + rgb[2];
   const float z = frame_->depthAt(u_px, v_px);
-  offset_m = std::isnan(z) ? std::numeric_limits<double>::quiet_NaN()
-                           : plane_.signedDistance(frame_->camera.backProject(u_px, v_px, z));
+  return std::isnan(z) ? std::numeric_limits<double>::quiet_NaN()
+                       : plane_.signedDistance(frame_->camera.backProject(u_px, v_px, z));
 }
 }  // namespace brick_pose

@@ -53,9 +53,11 @@ constexpr double kMinSeenCutShare = 0.75;
 /// of grey 90-100), while a faint line of 10 is no proof (see
 /// test_face_tiling)...
 constexpr double kClearSeamLineContrast = 15.0;
-/// ... or, on a dimmer face, this share of its mean grey level: shading
-/// scales with the light (in low light, grey 26, the rig's seams between
-/// reds draw lines of 6-8).
+/// ... or, on a dimmer face, this share of its level in the grey its lines
+/// are read in (faceGreyLevel, FaceGrey): shading scales with the light and
+/// with what the face reflects (in low light the rig's seams between reds
+/// drew lines of 6-8 on a mean grey of 26, read in the mean of the three
+/// channels; read in the reds' own colour both are larger).
 constexpr double kClearSeamLineShare = 0.15;
 /// The least line a seam can be on any face, however dim (grey levels): the
 /// image holds whole levels.
@@ -784,7 +786,8 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   // Read once: the seam reading and the tiles' plainness both start from it.
   const ColourUniformity face_uniformity =
       measureColourUniformity(frame, segment.mask, segment.bounding_box_px, params_.uniformity);
-  const double face_grey = meanGreyLevel(frame, segment.mask, segment.bounding_box_px);
+  // In the grey the seams are read in: their lines scale with it.
+  const double face_grey = faceGreyLevel(frame, segment.mask, segment.bounding_box_px);
   const SeamReading seams = seamReadingFor(face_uniformity, face_grey);
   FaceTiling tiling = typed_by_size && !seams_required ? tileBySeenSeams(frame, segment, measured, types, seams)
                       : typed_by_size ? tileFace(frame, segment, measured, types, params_.dimensions.tolerance_m,

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "brick_pose/common/statistics.h"
+#include "brick_pose/roi/face_grey.h"
 
 namespace brick_pose
 {
@@ -92,6 +93,9 @@ SeamProbe probeSeamsAcross(const RgbdFrame& frame, const Segment& segment, const
   if (bins < min_bins) return probe;
   BinSums grey(bins), offset(bins);
   const cv::Rect& box = segment.bounding_box_px;
+  // Read in the face's own colour, as the tiler's seam evidence is.
+  const cv::Scalar mean_bgr = cv::mean(frame.rgb(box), segment.mask);
+  const FaceGrey face_grey = FaceGrey::ofColour(cv::Vec3d(mean_bgr[0], mean_bgr[1], mean_bgr[2]));
   for (int row = 0; row < segment.mask.rows; ++row)
   {
     const std::uint8_t* inside = segment.mask.ptr<std::uint8_t>(row);
@@ -104,8 +108,7 @@ SeamProbe probeSeamsAcross(const RgbdFrame& frame, const Segment& segment, const
       if (!face.plane.intersectRay(frame.camera.ray(u, v), on_plane_m)) continue;
       const int bin = static_cast<int>(std::floor(((on_plane_m - origin_m).dot(axis) + margin_m) / bin_m));
       if (bin < 0 || bin >= bins) continue;
-      const cv::Vec3b& rgb = frame.rgb.ptr<cv::Vec3b>(v)[u];
-      grey.add(bin, (rgb[0] + rgb[1] + rgb[2]) / 3.0);
+      grey.add(bin, face_grey(frame.rgb.ptr<cv::Vec3b>(v)[u]));
       const float z = frame.depthAt(u, v);
       if (!std::isnan(z)) offset.add(bin, face.plane.signedDistance(frame.camera.backProject(u, v, z)));
     }
