@@ -14,6 +14,9 @@
 #include "brick_pose/roi/face_tiling.h"
 #include "brick_pose/roi/plane_pixel_samples.h"
 #include "brick_pose/segmentation/hsv_segmenter.h"
+#include "brick_pose/sim/d415_modes.h"
+#include "brick_pose/sim/scene_generator.h"
+#include "brick_pose/sim/synthetic_rig.h"
 #include "synthetic_plate_scene.h"
 #include "touching_plates_scene.h"
 
@@ -291,6 +294,39 @@ TEST(FaceTiling, ColourFreeGreenSizedFaceWithAFaintLineWhereTwoRedsWouldMeetIsPa
   const FrontEndResult plain = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
   ASSERT_EQ(plain.candidates.size(), 1u);
   EXPECT_TRUE(plain.candidates[0].complete) << plain.candidates[0].partial_reason;
+}
+
+TEST(FaceTiling, ALineTooCloseToAnEdgeForABrickBeyondItIsNoEdge)
+{
+  // A rig frame (touching rows, low light, 1280x720): four reds end to end
+  // make a blue's top. Along the first red, 2 cm inside its long edge, the
+  // simulated D4xx depth draws a line the tiler took for that red's edge:
+  // the strip beyond it, 3 cm to the segment's end, was left a cut with no
+  // seam seen, and the four were one blue in doubt. No brick fits a strip
+  // wider than a fattening fringe and narrower than any brick, so such a
+  // line is no cut, and the red ends at the segment's end.
+  const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
+  const std::uint64_t seed = 5000023;  // bench_frontend's touching-rows frame 120
+  const sim::Scene scene =
+      sim::SceneGenerator(catalogue, sim::SceneParams::defaultsFor(sim::SceneKind::kTouchingRows)).generate(seed);
+  ASSERT_EQ(scene.bricks.size(), 4u);
+  sim::SensorModel sensor = sim::SensorModel::d4xx();
+  sensor.lighting = sim::Lighting::kLowLight;
+  const PinholeCamera camera = sim::d415ColourMode("1280x720");
+  const sim::SyntheticFrame rendered = sim::SyntheticRig(camera, sensor).render(scene, seed);
+  // Up and the ground as support, as bench_frontend gives them.
+  FrontEndParams params = colourFreeParams();
+  const Eigen::Vector3d up = scene.world_T_camera.linear().transpose() * Eigen::Vector3d::UnitZ();
+  params.roi.up_direction = up;
+  params.roi.support_plane = Eigen::Vector4d(up.x(), up.y(), up.z(), scene.world_T_camera.translation().z());
+  const FrontEndResult result = FrontEnd(catalogue, params)
+                                    .process(makeRgbdFrame(rendered.rgb, rendered.depth_mm, camera, FrameHeader{1, "camera"}));
+  ASSERT_EQ(result.candidates.size(), 4u);
+  for (const BrickCandidate& c : result.candidates)
+  {
+    EXPECT_EQ(c.type_name, "red");
+    EXPECT_TRUE(c.complete) << c.partial_reason;
+  }
 }
 
 TEST(FaceTiling, MixedLayerOfAGreenAndTwoRedsIsTiledWithBothSizes)

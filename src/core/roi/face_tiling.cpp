@@ -448,7 +448,8 @@ public:
       along_t_(evidence.along_t),
       tolerance_cells_(std::max(1, roundToInt(tolerance_m / grid.cellM()))),
       free_(grid.counts(kFree)),
-      off_image_(grid.counts(kOffImage))
+      off_image_(grid.counts(kOffImage)),
+      narrowest_cells_(narrowestCells(types, grid.cellM()))
   {
     s_lines_ = {0, grid.nx()};
     t_lines_ = {0, grid.ny()};
@@ -681,6 +682,7 @@ private:
       if (line < 0 || line > limit) return;
       const LineSupport s = support(constant_s, line, from, to, inward);
       if (bounds_only && !clearlyBounds(s)) return;
+      if (s.seam && !s.boundary && !roomBeyond(constant_s, line, from, to, inward)) return;
       const double score = s.strength - penalty;
       if (score > best_score)
       {
@@ -980,6 +982,46 @@ private:
     return hidden > 0 && hidden * 4 >= samples;
   }
 
+  /// Whether a seam on `line` could part a tile lying on side `inward` of
+  /// it, over [from, to), from a neighbour. Beyond the line the untiled
+  /// segment must run on for the narrowest tile's width less the tolerance,
+  /// or go out of view (off the image, behind a nearer surface), or end
+  /// within a fattening fringe (kMaxFringeM, see fringeOnly()). A strip
+  /// wider than a fringe and narrower than any brick, closed by another
+  /// surface, holds no brick: a line there (a crease the stereo matching
+  /// draws by a step, a line of print) is no cut, and the tile's edge lies
+  /// beyond it.
+  bool roomBeyond(bool constant_s, int line, int from, int to, int inward) const
+  {
+    const int length_cells = to - from;
+    if (length_cells <= 0) return true;
+    const int outward = -inward;
+    const int limit = constant_s ? grid_.nx() : grid_.ny();
+    const int fringe_cells = static_cast<int>(std::ceil(kMaxFringeM / grid_.cellM()));
+    auto column = [&](int depth) { return outward > 0 ? line + depth : line - 1 - depth; };
+    auto countIn = [&](const CellCounts& counts, int c) {
+      return constant_s ? counts.count(c, c + 1, from, to) : counts.count(from, to, c, c + 1);
+    };
+    for (int depth = 0; depth < narrowest_cells_ - tolerance_cells_; ++depth)
+    {
+      const int c = column(depth);
+      const bool in_grid = c >= 0 && c < limit;
+      if (in_grid && countIn(off_image_, c) > 0) return true;
+      if (in_grid && countIn(free_, c) > kFringeEndFreeShare * length_cells) continue;
+      // The strip ends here: in a fringe, or where the segment may go on
+      // out of sight.
+      return depth <= fringe_cells || beyondHidden(constant_s, c, from, to);
+    }
+    return true;
+  }
+
+  static int narrowestCells(const std::vector<const BrickType*>& types, double cell_m)
+  {
+    double narrowest_m = std::numeric_limits<double>::infinity();
+    for (const BrickType* type : types) narrowest_m = std::min(narrowest_m, std::min(type->width_m, type->length_m));
+    return std::isfinite(narrowest_m) ? roundToInt(narrowest_m / cell_m) : 0;
+  }
+
   static constexpr double kBoundaryStrength = 6.0;
   /// The least a tile shows of itself where its start is cut off (cells).
   static constexpr int kMinOpenCells = 2;
@@ -1002,6 +1044,7 @@ private:
   int tolerance_cells_;
   CellCounts free_;       ///< untiled cells of the segment, rebuilt as tiles are taken
   CellCounts off_image_;  ///< cells off the image (fixed)
+  int narrowest_cells_;   ///< the narrowest tile's width (see roomBeyond())
   std::set<int> s_lines_, t_lines_;
   std::map<FitKey, KeptFit> fits_;  ///< see place()
 };
