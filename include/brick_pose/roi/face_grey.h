@@ -15,6 +15,11 @@
 
 namespace brick_pose
 {
+/// Pixels whose depth lies this close to a face's plane give the colour its
+/// grey is weighted by: the face, or a neighbour on its plane (depth noise
+/// at 2 m is a few millimetres; a step to the ground is far more).
+constexpr double kFaceColourOnPlaneM = 0.01;
+
 class FaceGrey
 {
 public:

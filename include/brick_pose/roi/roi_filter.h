@@ -294,8 +294,9 @@ private:
   FaceTiling tileBySeenSeams(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
                              const std::vector<const BrickType*>& types, const SeamReading& seams) const;
   /// How the tiler reads a face's seams, given its uniformity and its level
-  /// `face_grey` in the grey its lines are read in (faceGreyLevel): on a plain face a line is a seam, read against its
-  /// light (plain_seam_line_share) and confirmed along the lines cuts share
+  /// `face_grey` in the grey its lines are read in (faceGreyLevel): on a
+  /// plain face a line is a seam, read against its light
+  /// (plain_seam_line_share) and confirmed along the lines cuts share
   /// (FaceTilingParams::confirm_along_lines); elsewhere params_ as they are.
   SeamReading seamReadingFor(const ColourUniformity& face_uniformity, double face_grey) const;
 

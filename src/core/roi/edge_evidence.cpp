@@ -18,9 +18,6 @@ constexpr float kMissing = std::numeric_limits<float>::quiet_NaN();
 /// Where the profile has no depth beyond the edge, the first depth out to
 /// this many probe widths stands in.
 constexpr int kFarReachFactor = 6;
-/// Pixels this close to the face's plane give the colour grey levels are
-/// weighted by (FaceGrey): the face, or a neighbour on its plane.
-constexpr double kOnFaceM = 0.01;
 
 /// Depth (as signed distance from the face's plane) and grey level sampled
 /// on a grid of rows (positions along the edge) x columns (offsets across
@@ -116,7 +113,7 @@ Profile sampleProfile(const ProfileLine& line, int min_offset, int max_offset, i
       if (offset > sampled_max_offset) continue;
       colours[cell] = line.frame.rgb.ptr<cv::Vec3b>(v)[u];
       profile.offset_m[cell] = static_cast<float>(line.planeOffsetM(u, v));
-      if (std::abs(profile.offset_m[cell]) < kOnFaceM) on_face.add(colours[cell]);
+      if (std::abs(profile.offset_m[cell]) < kFaceColourOnPlaneM) on_face.add(colours[cell]);
     }
   }
   const FaceGrey grey = on_face.grey();

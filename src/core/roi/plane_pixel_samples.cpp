@@ -9,10 +9,6 @@ namespace brick_pose
 {
 namespace
 {
-/// Pixels this close to the plane are the face's (or a neighbour's on it):
-/// their mean colour weights the grey levels. Depth noise at 2 m is a few mm.
-constexpr double kOnFaceM = 0.01;
-
 /// The u extent of the convex polygon over rows [y_lo, y_hi]; false when it
 /// does not reach them. The extent of a convex region in a band is reached
 /// on its boundary, so clipping each side to the band finds it.
@@ -111,7 +107,7 @@ PlanePixelSamples::PlanePixelSamples(const RgbdFrame& frame, const PlaneFit& pla
     {
       const double offset_m = offsetM(u, v);
       offset_m_.push_back(offset_m);
-      if (std::abs(offset_m) < kOnFaceM) on_face.add(row[u]);
+      if (std::abs(offset_m) < kFaceColourOnPlaneM) on_face.add(row[u]);
     }
   }
   face_grey_ = on_face.grey();
