@@ -296,37 +296,65 @@ TEST(FaceTiling, ColourFreeGreenSizedFaceWithAFaintLineWhereTwoRedsWouldMeetIsPa
   EXPECT_TRUE(plain.candidates[0].complete) << plain.candidates[0].partial_reason;
 }
 
+/// The colour_free front end on bench_frontend's touching-rows frame `frame`
+/// (seed, lighting, the ground given as support, as the benchmark sets them).
+FrontEndResult touchingRowsBenchFrame(int frame, const std::string& resolution, std::size_t expected_bricks)
+{
+  const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
+  const std::uint64_t seed = 1000003ULL + 4000000ULL + static_cast<std::uint64_t>(frame - 100);
+  const sim::Scene scene =
+      sim::SceneGenerator(catalogue, sim::SceneParams::defaultsFor(sim::SceneKind::kTouchingRows)).generate(seed);
+  EXPECT_EQ(scene.bricks.size(), expected_bricks);
+  sim::SensorModel sensor = sim::SensorModel::d4xx();
+  const sim::Lighting lightings[3] = {sim::Lighting::kNormal, sim::Lighting::kSunlight, sim::Lighting::kLowLight};
+  sensor.lighting = lightings[(frame - 100) % 3];
+  const PinholeCamera camera = sim::d415ColourMode(resolution);
+  const sim::SyntheticFrame rendered = sim::SyntheticRig(camera, sensor).render(scene, seed);
+  FrontEndParams params;
+  params.mode = SegmentationMode::kColourFree;
+  const Eigen::Vector3d up = scene.world_T_camera.linear().transpose() * Eigen::Vector3d::UnitZ();
+  params.roi.up_direction = up;
+  params.roi.support_plane = Eigen::Vector4d(up.x(), up.y(), up.z(), scene.world_T_camera.translation().z());
+  return FrontEnd(catalogue, params)
+      .process(makeRgbdFrame(rendered.rgb, rendered.depth_mm, camera, FrameHeader{1, "camera"}));
+}
+
 TEST(FaceTiling, ALineTooCloseToAnEdgeForABrickBeyondItIsNoEdge)
 {
-  // A rig frame (touching rows, low light, 1280x720): four reds end to end
+  // Touching rows frame 120 (1280x720, low light): four reds end to end
   // make a blue's top. Along the first red, 2 cm inside its long edge, the
   // simulated D4xx depth draws a line the tiler took for that red's edge:
   // the strip beyond it, 3 cm to the segment's end, was left a cut with no
   // seam seen, and the four were one blue in doubt. No brick fits a strip
   // wider than a fattening fringe and narrower than any brick, so such a
   // line is no cut, and the red ends at the segment's end.
-  const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
-  const std::uint64_t seed = 5000023;  // bench_frontend's touching-rows frame 120
-  const sim::Scene scene =
-      sim::SceneGenerator(catalogue, sim::SceneParams::defaultsFor(sim::SceneKind::kTouchingRows)).generate(seed);
-  ASSERT_EQ(scene.bricks.size(), 4u);
-  sim::SensorModel sensor = sim::SensorModel::d4xx();
-  sensor.lighting = sim::Lighting::kLowLight;
-  const PinholeCamera camera = sim::d415ColourMode("1280x720");
-  const sim::SyntheticFrame rendered = sim::SyntheticRig(camera, sensor).render(scene, seed);
-  // Up and the ground as support, as bench_frontend gives them.
-  FrontEndParams params = colourFreeParams();
-  const Eigen::Vector3d up = scene.world_T_camera.linear().transpose() * Eigen::Vector3d::UnitZ();
-  params.roi.up_direction = up;
-  params.roi.support_plane = Eigen::Vector4d(up.x(), up.y(), up.z(), scene.world_T_camera.translation().z());
-  const FrontEndResult result = FrontEnd(catalogue, params)
-                                    .process(makeRgbdFrame(rendered.rgb, rendered.depth_mm, camera, FrameHeader{1, "camera"}));
+  const FrontEndResult result = touchingRowsBenchFrame(120, "1280x720", 4u);
   ASSERT_EQ(result.candidates.size(), 4u);
   for (const BrickCandidate& c : result.candidates)
   {
     EXPECT_EQ(c.type_name, "red");
     EXPECT_TRUE(c.complete) << c.partial_reason;
   }
+}
+
+TEST(FaceTiling, AZOfTwoRedsSideBySideIsCutAlongTheLineTheyShare)
+{
+  // Touching rows frame 122 (848x480): two reds side by side, offset 14 cm
+  // along their length, a Z. Each tile is anchored at the line they share
+  // (its anchor slid along the outline to the first untiled cells), so
+  // neither made that line a cut, the tiling had no cut, and the Z was
+  // refused as filling too little of its quad. Read as a cut of both, the
+  // seam gives the reds; the one whose edge there also runs along the
+  // ground is partial (its edge test sees no seam along the whole edge).
+  const FrontEndResult result = touchingRowsBenchFrame(122, "848x480", 2u);
+  ASSERT_EQ(result.candidates.size(), 2u);
+  int complete = 0;
+  for (const BrickCandidate& c : result.candidates)
+  {
+    EXPECT_EQ(c.type_name, "red");
+    complete += c.complete ? 1 : 0;
+  }
+  EXPECT_GE(complete, 1);
 }
 
 TEST(FaceTiling, MixedLayerOfAGreenAndTwoRedsIsTiledWithBothSizes)

@@ -463,6 +463,8 @@ public:
     std::array<bool, 4> cut{{false, false, false, false}};
     std::array<bool, 4> seen{{false, false, false, false}};
     std::array<bool, 4> groove{{false, false, false, false}};
+    /// Edges at the anchor the tile grew from (the others were snapped).
+    std::array<bool, 4> anchored{{false, false, false, false}};
     double score = -1e9;
   };
 
@@ -866,6 +868,8 @@ private:
     tile.cut[far_j_edge] = !support_j.boundary;
     tile.seen[far_j_edge] = support_j.seam;
     tile.groove[far_j_edge] = support_j.groove;
+    tile.anchored[2 - far_i_edge] = true;
+    tile.anchored[4 - far_j_edge] = true;
     return result;
   }
 
@@ -1345,10 +1349,39 @@ void confirmAlongLines(const RgbdFrame& frame, const PlaneFit& plane, const Plan
 
 /// The placed tiles as a FaceTiling: corners, cuts and the seams confirmed
 /// along each cut (the tiles' pixels are cut by cutTileSegments).
+/// Two tiles anchored on one line from either side, overlapping along it,
+/// are neighbours there, though neither tile made that edge a cut: a Z of
+/// two bricks side by side and offset along their length has each tile
+/// anchored at the line they share (its anchor slid along the outline to
+/// the first untiled cells), and an anchor edge is taken for the region's
+/// boundary. The line is a cut of both; it is read along the stretch they
+/// share like any cut. (An edge the tiler snapped and found a boundary
+/// stays one: made a cut there, it lost pallet tops.)
+std::vector<Tiler::Placed> withFacingCuts(std::vector<Tiler::Placed> placed)
+{
+  for (std::size_t a = 0; a < placed.size(); ++a)
+    for (std::size_t b = a + 1; b < placed.size(); ++b)
+      for (int k = 0; k < 4; ++k)
+      {
+        const int facing = (k + 2) % 4;
+        const CellRect& ra = placed[a].rect;
+        const CellRect& rb = placed[b].rect;
+        // Edge k of one on the line of the other's opposite edge: they touch.
+        if (!placed[a].anchored[k] || !placed[b].anchored[facing] || ra.edgeLine(k) != rb.edgeLine(facing)) continue;
+        const bool overlap = k % 2 == 0 ? std::min(ra.j1, rb.j1) > std::max(ra.j0, rb.j0)
+                                        : std::min(ra.i1, rb.i1) > std::max(ra.i0, rb.i0);
+        if (!overlap) continue;
+        placed[a].cut[k] = true;
+        placed[b].cut[facing] = true;
+      }
+  return placed;
+}
+
 FaceTiling describeTiling(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
-                          const PlaneGrid& grid, const std::vector<Tiler::Placed>& placed, int segment_cells,
+                          const PlaneGrid& grid, const std::vector<Tiler::Placed>& tiler_placed, int segment_cells,
                           const EdgeEvidenceParams& evidence_params, const FaceTilingParams& params)
 {
+  const std::vector<Tiler::Placed> placed = withFacingCuts(tiler_placed);
   FaceTiling tiling;
   tiling.untiled_fraction = static_cast<double>(grid.freeCount()) / segment_cells;
   tiling.tiles.reserve(placed.size());
