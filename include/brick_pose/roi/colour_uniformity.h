@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 
 #include "brick_pose/frame/rgbd_frame.h"
+#include "brick_pose/roi/face_grey.h"
 
 namespace brick_pose
 {
@@ -61,4 +62,8 @@ double meanGreyLevel(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect
 /// image. A seam's line scales with this level: on a saturated face it is
 /// up to three times the mean grey level.
 double faceGreyLevel(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box);
+
+/// The grey those pixels' seams are read in (FaceGrey::ofColour of their
+/// mean colour); equal weights when none is in the image.
+FaceGrey faceGreyOf(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box);
 }  // namespace brick_pose

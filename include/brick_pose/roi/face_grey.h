@@ -38,14 +38,11 @@ public:
     return grey;
   }
 
-  /// The pixel's grey level: the weighted sum (weights add up to one, so a
-  /// grey pixel reads its own level).
-  double operator()(const cv::Vec3b& bgr) const
-  {
-    return weights_[0] * bgr[0] + weights_[1] * bgr[1] + weights_[2] * bgr[2];
-  }
-  /// The same for a colour with fractional levels (a mean).
-  double operator()(const cv::Vec3d& bgr) const
+  /// The grey level of a pixel (or of a mean colour, with fractional
+  /// levels): the weighted sum (weights add up to one, so a grey pixel reads
+  /// its own level).
+  template <typename Level>
+  double operator()(const cv::Vec<Level, 3>& bgr) const
   {
     return weights_[0] * bgr[0] + weights_[1] * bgr[1] + weights_[2] * bgr[2];
   }

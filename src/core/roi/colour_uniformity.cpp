@@ -9,7 +9,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "brick_pose/common/statistics.h"
-#include "brick_pose/roi/face_grey.h"
 
 namespace brick_pose
 {
@@ -115,5 +114,11 @@ double faceGreyLevel(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect
   const std::optional<cv::Vec3d> bgr = meanColour(frame, mask, box);
   if (!bgr) return 0.0;
   return FaceGrey::ofColour(*bgr)(*bgr);
+}
+
+FaceGrey faceGreyOf(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box)
+{
+  const std::optional<cv::Vec3d> bgr = meanColour(frame, mask, box);
+  return bgr ? FaceGrey::ofColour(*bgr) : FaceGrey();
 }
 }  // namespace brick_pose

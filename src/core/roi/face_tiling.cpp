@@ -409,6 +409,13 @@ struct CellRect
   int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
   /// The line edge k lies on, in rectangle order: s = i0, t = j0, s = i1, t = j1.
   int edgeLine(int k) const { return k == 0 ? i0 : k == 1 ? j0 : k == 2 ? i1 : j1; }
+  /// Whether this rectangle and `other` share cells along the axis edge k
+  /// spans (the other axis than its line's).
+  bool overlapsAlongEdge(const CellRect& other, int k) const
+  {
+    return k % 2 == 0 ? std::min(j1, other.j1) > std::max(j0, other.j0)
+                      : std::min(i1, other.i1) > std::max(i0, other.i0);
+  }
 };
 
 class Tiler
@@ -945,10 +952,8 @@ private:
     if (length_cells <= 0) return false;
     const int limit = constant_s ? grid_.nx() : grid_.ny();
     const int max_depth_cells = std::min(tolerance_cells_, static_cast<int>(std::ceil(kMaxFringeM / grid_.cellM())));
-    auto column = [&](int depth) { return outward > 0 ? line + depth : line - 1 - depth; };
-    auto countIn = [&](const CellCounts& counts, int c) {
-      return constant_s ? counts.count(c, c + 1, from, to) : counts.count(from, to, c, c + 1);
-    };
+    auto column = [&](int depth) { return columnBeyond(line, outward, depth); };
+    auto countIn = [&](const CellCounts& counts, int c) { return countOnColumn(counts, constant_s, c, from, to); };
     for (int depth = 0; depth <= max_depth_cells; ++depth)
     {
       const int c = column(depth);
@@ -959,6 +964,17 @@ private:
         return depth > 0 && countIn(tiled, column(depth + 1)) == 0 && countIn(tiled, column(depth + 2)) == 0;
     }
     return false;
+  }
+
+  /// The column (of constant s when constant_s, else the row) `depth` cells
+  /// beyond `line` toward `outward` (+1: higher indices).
+  static int columnBeyond(int line, int outward, int depth) { return outward > 0 ? line + depth : line - 1 - depth; }
+
+  /// The cells holding `counts`' state on column `c` over [from, to) of
+  /// the other axis.
+  static int countOnColumn(const CellCounts& counts, bool constant_s, int c, int from, int to)
+  {
+    return constant_s ? counts.count(c, c + 1, from, to) : counts.count(from, to, c, c + 1);
   }
 
   /// Deepest strip of segment beyond a cut that is taken for fattening: a
@@ -1002,10 +1018,8 @@ private:
     const int outward = -inward;
     const int limit = constant_s ? grid_.nx() : grid_.ny();
     const int fringe_cells = static_cast<int>(std::ceil(kMaxFringeM / grid_.cellM()));
-    auto column = [&](int depth) { return outward > 0 ? line + depth : line - 1 - depth; };
-    auto countIn = [&](const CellCounts& counts, int c) {
-      return constant_s ? counts.count(c, c + 1, from, to) : counts.count(from, to, c, c + 1);
-    };
+    auto column = [&](int depth) { return columnBeyond(line, outward, depth); };
+    auto countIn = [&](const CellCounts& counts, int c) { return countOnColumn(counts, constant_s, c, from, to); };
     for (int depth = 0; depth < narrowest_cells_ - tolerance_cells_; ++depth)
     {
       const int c = column(depth);
@@ -1107,9 +1121,6 @@ void markSharedCuts(const std::vector<Tiler::Placed>& placed, FaceTiling& tiling
 {
   // Edge k of a rectangle lies on line (s = i0, t = j0, s = i1, t = j1)[k]
   // and spans the other axis.
-  auto overlap = [](const CellRect& a, const CellRect& b, int k) {
-    return k % 2 == 0 ? std::min(a.j1, b.j1) > std::max(a.j0, b.j0) : std::min(a.i1, b.i1) > std::max(a.i0, b.i0);
-  };
   for (std::size_t a = 1; a < placed.size(); ++a)
     for (int k = 0; k < 4; ++k)
     {
@@ -1118,7 +1129,7 @@ void markSharedCuts(const std::vector<Tiler::Placed>& placed, FaceTiling& tiling
       const int facing = (k + 2) % 4;
       for (std::size_t b = 0; b < a; ++b)
         if (tiling.tiles[b].cut[facing] && placed[b].rect.edgeLine(facing) == placed[a].rect.edgeLine(k) &&
-            overlap(placed[a].rect, placed[b].rect, k))
+            placed[a].rect.overlapsAlongEdge(placed[b].rect, k))
         {
           // Seen only where every stretch of it was.
           tile.seam_seen[k] = (tile.cut[k] ? tile.seam_seen[k] : true) && tiling.tiles[b].seam_seen[facing];
@@ -1367,10 +1378,9 @@ std::vector<Tiler::Placed> withFacingCuts(std::vector<Tiler::Placed> placed)
         const CellRect& ra = placed[a].rect;
         const CellRect& rb = placed[b].rect;
         // Edge k of one on the line of the other's opposite edge: they touch.
-        if (!placed[a].anchored[k] || !placed[b].anchored[facing] || ra.edgeLine(k) != rb.edgeLine(facing)) continue;
-        const bool overlap = k % 2 == 0 ? std::min(ra.j1, rb.j1) > std::max(ra.j0, rb.j0)
-                                        : std::min(ra.i1, rb.i1) > std::max(ra.i0, rb.i0);
-        if (!overlap) continue;
+        if (!placed[a].anchored[k] || !placed[b].anchored[facing] || ra.edgeLine(k) != rb.edgeLine(facing) ||
+            !ra.overlapsAlongEdge(rb, k))
+          continue;
         placed[a].cut[k] = true;
         placed[b].cut[facing] = true;
       }

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "brick_pose/common/statistics.h"
-#include "brick_pose/roi/face_grey.h"
+#include "brick_pose/roi/colour_uniformity.h"
 
 namespace brick_pose
 {
@@ -94,8 +94,7 @@ SeamProbe probeSeamsAcross(const RgbdFrame& frame, const Segment& segment, const
   BinSums grey(bins), offset(bins);
   const cv::Rect& box = segment.bounding_box_px;
   // Read in the face's own colour, as the tiler's seam evidence is.
-  const cv::Scalar mean_bgr = cv::mean(frame.rgb(box), segment.mask);
-  const FaceGrey face_grey = FaceGrey::ofColour(cv::Vec3d(mean_bgr[0], mean_bgr[1], mean_bgr[2]));
+  const FaceGrey face_grey = faceGreyOf(frame, segment.mask, box);
   for (int row = 0; row < segment.mask.rows; ++row)
   {
     const std::uint8_t* inside = segment.mask.ptr<std::uint8_t>(row);
