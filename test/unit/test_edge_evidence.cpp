@@ -197,13 +197,57 @@ RgbdFrame nearerBeyondLowerThird(double edge_u)
       plainGrey);
 }
 
-TEST(EdgeEvidence, AnOccluderOverPartOfTheEdgeMakesItAnOcclusion)
+TEST(EdgeEvidence, ANearerSurfaceTheCameraLooksOverAlongPartOfTheEdgeMakesItAnOcclusion)
 {
-  // Whether the camera looks over it (left of the principal point: it
-  // hides 3 cm) or would see a wall standing there: a wall along part of
-  // the edge only is no neighbour's standing beside the whole face.
-  for (const double edge_u : {100.0, 220.0})
-    EXPECT_EQ(classify(nearerBeyondLowerThird(edge_u), edge_u), EdgeKind::kOcclusion) << edge_u;
+  // Left of the principal point a wall standing on the edge would hide
+  // 3 cm of the face: the face may go on under it.
+  EXPECT_EQ(classify(nearerBeyondLowerThird(100.0), 100.0), EdgeKind::kOcclusion);
+}
+
+TEST(EdgeEvidence, ADropAlongPartOfTheEdgeAndAWallTheCameraSeesAlongTheRestEndTheFace)
+{
+  // The surface drops away beyond two thirds of the edge: the face ends at
+  // that line. Beyond the last third a wall rises that the camera sees
+  // (right of the principal point): a neighbour standing beside the face,
+  // not a box on it, which would stand inside the line.
+  const EdgeEvidence evidence = classifyEdge(nearerBeyondLowerThird(220.0), facePlane(), Eigen::Vector2d(220.0, 30.0),
+                                             Eigen::Vector2d(220.0, 210.0), Eigen::Vector2d(1.0, 0.0));
+  EXPECT_EQ(evidence.kind, EdgeKind::kDropBesideWall);
+  EXPECT_TRUE(isRealEdge(EdgeKind::kDropBesideWall));
+  EXPECT_NEAR(evidence.lowest_wall_m, 0.15, 0.01);
+  EXPECT_NEAR(evidence.highest_wall_m, 0.15, 0.01);
+}
+
+TEST(EdgeEvidence, AnOccluderReachingOverTheFaceBesideADropIsAnOcclusion)
+{
+  // The same, but the nearer surface reaches 5 px over the face along the
+  // lower third (a box lying across its corner, which the least-area quad
+  // runs past): the band inside the edge is not on the face there.
+  const RgbdFrame frame = makeFrame(
+      [](int u, int v) {
+        if (v > 150 && u >= 215) return kFaceDepthM - 0.15;
+        return u < 220 ? kFaceDepthM : kFaceDepthM + 0.2;
+      },
+      plainGrey);
+  EXPECT_EQ(classify(frame, 220.0), EdgeKind::kOcclusion);
+}
+
+TEST(EdgeEvidence, WallsOfTwoHeightsAllAlongTheEdgeAreAnOcclusionThatKeepsTheirHeights)
+{
+  // Two taller neighbours beside the face, 0.08 and 0.18 m above it (or
+  // two boxes resting on it: RoiFilter tells by the face's size and
+  // height above the support).
+  const RgbdFrame frame = makeFrame(
+      [](int u, int v) { return u < 220.0 ? kFaceDepthM : kFaceDepthM - (v < 120 ? 0.08 : 0.18); }, plainGrey);
+  const EdgeEvidence evidence = classifyEdge(frame, facePlane(), Eigen::Vector2d(220.0, 30.0),
+                                             Eigen::Vector2d(220.0, 210.0), Eigen::Vector2d(1.0, 0.0));
+  EXPECT_EQ(evidence.kind, EdgeKind::kOcclusion);
+  EXPECT_NEAR(evidence.lowest_wall_m, 0.08, 0.01);
+  EXPECT_NEAR(evidence.highest_wall_m, 0.18, 0.01);
+  // An occluder over part of the edge keeps none.
+  const EdgeEvidence looked_over = classifyEdge(nearerBeyondLowerThird(100.0), facePlane(), Eigen::Vector2d(100.0, 30.0),
+                                                Eigen::Vector2d(100.0, 210.0), Eigen::Vector2d(1.0, 0.0));
+  EXPECT_TRUE(std::isnan(looked_over.lowest_wall_m));
 }
 
 TEST(EdgeEvidence, AWallWhoseHeightChangesAlongTheEdgeIsAnOcclusion)
@@ -258,6 +302,42 @@ TEST(EdgeEvidence, AWallOverAWholeEdgeEndIsAnOcclusionUnlessItIsTheEdgesOwnStepU
   // wall reaching the corner is that wall; one of another height is not.
   EXPECT_EQ(endsOf(0.15), EdgeKind::kUnknown);
   EXPECT_EQ(endsOf(0.25), EdgeKind::kOcclusion);
+  // Beside walls from 0.10 to 0.20 m high, a 0.15 m wall at the end is one of them.
+  EXPECT_EQ(occlusionAtEdgeEnds(frame, facePlane(), Eigen::Vector2d(kEdgeU, 30.0), Eigen::Vector2d(kEdgeU, 210.0),
+                                Eigen::Vector2d(1.0, 0.0), EdgeEvidenceParams(), 0.10, 0.20),
+            EdgeKind::kUnknown);
+}
+
+/// Beyond the edge at kEdgeU a wall 0.15 m nearer, whose depth the sensor
+/// carried 5 px over the face (its colour ends at kEdgeU + 5), then the
+/// wall's foot: a line `line_darkening` grey levels darker, 3 px wide.
+RgbdFrame wallFattenedOverFace(double line_darkening)
+{
+  return makeFrame([](int u, int) { return u < kEdgeU ? kFaceDepthM : kFaceDepthM - 0.15; },
+                   [line_darkening](int u, int) {
+                     return u >= kEdgeU + 5 && u < kEdgeU + 8 ? 150.0 - line_darkening : 150.0;
+                   });
+}
+
+double footShift(const RgbdFrame& frame, double edge_u = kEdgeU)
+{
+  return wallFootShiftPx(frame, facePlane(), Eigen::Vector2d(edge_u, 30.0), Eigen::Vector2d(edge_u, 210.0),
+                         Eigen::Vector2d(1.0, 0.0));
+}
+
+TEST(EdgeEvidence, TheFacesEdgeBesideAWallIsWhereItsColourEnds)
+{
+  // The depth edge is 5 px short; the face's last pixel in colour is
+  // kEdgeU + 4, so its edge runs half a pixel beyond it.
+  EXPECT_NEAR(footShift(wallFattenedOverFace(60.0)), 4.5, 0.3);
+  // A colour edge at the depth edge: nothing to move.
+  const RgbdFrame sharp = makeFrame([](int u, int) { return u < kEdgeU ? kFaceDepthM : kFaceDepthM - 0.15; },
+                                    [](int u, int) { return u < kEdgeU ? 150.0 : 90.0; });
+  EXPECT_NEAR(footShift(sharp), 0.0, 0.3);
+  // No colour change within reach (8 px): unknown, the edge stays.
+  EXPECT_TRUE(std::isnan(footShift(wallFattenedOverFace(0.0))));
+  // A change fainter than the line contrast is none.
+  EXPECT_TRUE(std::isnan(footShift(wallFattenedOverFace(3.0))));
 }
 
 TEST(EdgeEvidence, PlaneContinuingBeyondTheEdgeIsAMaskEdge)

@@ -45,6 +45,10 @@ enum class EdgeKind : std::uint8_t
   kNoDepth,      ///< Too little depth beyond the edge to tell.
   kOverrun,      ///< Inside the edge the pixels are off the face's plane: the mask runs over the
                  ///< face's edge (onto a side face of the same colour), so the edge is not the face's.
+  kDropBesideWall,  ///< Along part of the edge the surface drops away, along the rest it rises to
+                    ///< walls standing on the edge that the camera sees (hiding none of the face):
+                    ///< the drop shows the face ends at this line, so the walls stand beside it
+                    ///< (neighbours), not on it. A low box beside the end of a taller row.
 };
 
 /// True for the kinds that show where a brick ends: a step down, a crease,
@@ -110,6 +114,12 @@ struct EdgeEvidenceParams
   /// hidden is the face not seen whole (with 0.01 m, flat boxes 2 % hidden
   /// beside tall ones were published complete).
   double max_hidden_by_wall_m = 0.0;
+  /// Beside a wall the camera sees, the stereo matcher carries the wall's
+  /// depth up to this many pixels over the face (its fattening plus half
+  /// its matching window: 3 + 3 for a D4xx), so the face's depth ends short
+  /// of its edge; the edge is sought in the colour image that far out
+  /// (wallFootShiftPx). 0 leaves the depth edge as it is.
+  int max_wall_foot_shift_px = 8;
 
   void validate() const;  ///< Throws ConfigError naming the field.
 };
@@ -124,6 +134,15 @@ struct EdgeEvidence
   double outside_offset_m = 0.0;
   double groove_m = 0.0;       ///< Depth of a groove along the edge (m, > 0 farther).
   double line_contrast = 0.0;  ///< Grey levels the edge line is darker (or brighter) than both sides.
+  /// Share of the depth samples just inside the edge that lie above the
+  /// face's plane (something reaching over the face there).
+  double inside_above_fraction = 0.0;
+  /// Lowest and highest wall (m above the plane) seen along a kStepUp or
+  /// kDropBesideWall edge, or a kOcclusion that is walls the camera sees
+  /// all along it at several heights (two taller neighbours, or boxes
+  /// resting on the face); NaN otherwise.
+  double lowest_wall_m = std::numeric_limits<double>::quiet_NaN();
+  double highest_wall_m = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Classifies the edge from `a_px` to `b_px` of a face lying on `plane`;
@@ -131,7 +150,9 @@ struct EdgeEvidence
 /// unit). The worst stretch decides: border, then occlusion, then no depth,
 /// then a mask edge; among real kinds a seam, then a crease, then a step.
 /// A step up stands only when every stretch is one, at one height
-/// (within min_step_m); otherwise the edge is an occlusion.
+/// (within min_step_m); stretches that only step up to walls the camera
+/// sees or drop away, with a drop among them, are kDropBesideWall; any
+/// other mix with a wall is an occlusion.
 EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
                           const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
                           const EdgeEvidenceParams& params = EdgeEvidenceParams());
@@ -140,13 +161,27 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
 /// end_margin_fraction next to each corner), judged the same way: kOcclusion
 /// when a nearer surface reaches over either end, else kUnknown. Something
 /// lying across a face's corner hides it from the edges' own profiles. A
-/// step up at an end is such a surface too, unless the edge is itself a
-/// step up kept as the face's end, to a wall `step_up_height_m` high, and
-/// the end's wall has that height (within min_step_m): then it is that wall.
+/// step up at an end is such a surface too, unless the edge is itself kept
+/// as the face's end beside walls from `lowest_wall_m` to `highest_wall_m`
+/// high (NaN: none; one height: pass it once), and the end's wall lies in
+/// that range (within min_step_m): then it is one of those walls.
 EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
                              const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
                              const EdgeEvidenceParams& params = EdgeEvidenceParams(),
-                             double step_up_height_m = std::numeric_limits<double>::quiet_NaN());
+                             double lowest_wall_m = std::numeric_limits<double>::quiet_NaN(),
+                             double highest_wall_m = std::numeric_limits<double>::quiet_NaN());
+
+/// How far (pixels, along `outward_px`) the face's true edge lies beyond
+/// its depth edge `a_px`-`b_px` where a wall stands there (kStepUp,
+/// kDropBesideWall): where the first feature out to max_wall_foot_shift_px
+/// that takes the face's grey level (the median along the edge) off its
+/// level inside the edge by more than the line contrast (the wall's foot, a
+/// rim or a seam) reaches half its peak. 0 when the colour already changes
+/// at the depth edge; NaN when it does not change within reach or the edge
+/// cannot be read.
+double wallFootShiftPx(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
+                       const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
+                       const EdgeEvidenceParams& params = EdgeEvidenceParams());
 
 /// Evidence of a seam along a line that crosses a face (both sides on
 /// `plane`): the groove depth and dark-line contrast over the whole line,

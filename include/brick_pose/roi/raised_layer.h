@@ -36,6 +36,11 @@ struct OutlineSurroundings
   /// Most of the ring with depth lies below the plane: the segment stands
   /// up from its surroundings (a layer on a pallet, not the floor under it).
   bool fallsAway() const { return withDepth() > 0 && 2 * below > withDepth(); }
+  /// Where no nearer surface rises beside it, the ring mostly lies below
+  /// the plane, on at least a quarter of the ring: a low row of boxes
+  /// between the pallet's edge and taller boxes standing beside it. (Around
+  /// the floor nothing lies below; objects rise from it.)
+  bool fallsAwayBesideWalls() const { return 4 * below >= withDepth() && below > level; }
 };
 
 /// Reads the ring between `inner_px` and `outer_px` pixels outside the

@@ -193,6 +193,14 @@ private:
   /// `edges`) from the mask and the plane.
   std::optional<std::string> fitOutline(const RgbdFrame& frame, const Segment& segment, const EdgeEvidenceParams& edges,
                                         BrickCandidate& candidate) const;
+  /// Sets the candidate's corners (image and plane, edge 0 along its
+  /// length) and what follows from them: size, centre, axis points.
+  static void placeCorners(const PinholeCamera& camera, const QuadCorners& corners_px,
+                           const std::array<Eigen::Vector3d, 4>& corners_m, BrickCandidate& candidate);
+  /// Moves each edge with a wall beside it out to where the colour image
+  /// shows the face ends (wallFootShiftPx).
+  void moveEdgesToWallFeet(const RgbdFrame& frame, const EdgeEvidenceParams& edges,
+                           const std::array<bool, 4>& beside_wall, BrickCandidate& candidate) const;
   /// The type of a measured face: the segment's colour's (HSV), or the
   /// catalogue size it matches (colour-free; when several fit, the one whose
   /// height the sides seen below the face's edges agree with).

@@ -96,6 +96,7 @@ ParamBindings frontEndBindings(FrontEndParams& params)
           {"edge_seam_noise_factor", &roi.edges.seam_noise_factor},
           {"edge_max_overrun_m", &roi.edges.max_overrun_m},
           {"edge_max_hidden_by_wall_m", &roi.edges.max_hidden_by_wall_m},
+          {"edge_max_wall_foot_shift_px", &roi.edges.max_wall_foot_shift_px},
           {"resting_height_margin_m", &roi.resting_height_margin_m},
           {"tiling_min_seam_strength", &roi.tiling.min_seam_strength},
           {"plain_seam_line_share", &roi.plain_seam_line_share},

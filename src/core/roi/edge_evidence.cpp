@@ -291,6 +291,16 @@ float profileOffsetM(const Profile& profile, const ProfileLine& line, int row, i
 /// band raised above the plane (a cover merged into the face) says nothing
 /// about where the face ends.
 constexpr int kMinRowsToFallAway = 8;
+
+/// A stretch beside a neighbour's end may hold this share of rows neither
+/// dropping nor rising: the neighbour's rounded corner, smoothed by the
+/// stereo window.
+constexpr double kMaxUnsortedRowFraction = 0.2;
+
+/// A wall stands beside the face only where the band just inside the edge
+/// is on the face's plane: something reaching over the face shows there
+/// too (the least-area quad runs past the notch it cuts).
+constexpr double kMaxInsideAboveFraction = 0.05;
 bool fallsAway(double outside_m, double inside_m, int rows_with_depth, double step_m,
                const EdgeEvidenceParams& params)
 {
@@ -318,6 +328,28 @@ double hiddenByWallM(const ProfileLine& line, double height_m)
   const double rise = -middle_m.dot(line.plane.normal);
   if (!(outward_m.norm() > 0.0) || !(std::abs(rise) > 1e-9)) return kInfinite;
   return height_m * -middle_m.dot(outward_m.normalized()) / std::abs(rise);
+}
+
+/// A stretch whose rows either drop away or rise to a wall (a neighbour's
+/// end falls inside it) is kDropBesideWall when the camera sees that wall;
+/// any level or unread rows beyond a few (the neighbour's rounded corner)
+/// leave `occluded` as it is.
+EdgeEvidence dropBesideWall(const ProfileLine& line, const std::vector<double>& outside_values, int below,
+                            int rows, double step_m, const EdgeEvidenceParams& params, EdgeEvidence occluded)
+{
+  occluded.kind = EdgeKind::kOcclusion;
+  std::vector<double> wall;
+  for (const double value : outside_values)
+    if (value > step_m) wall.push_back(value);
+  const int other = rows - below - static_cast<int>(wall.size());
+  if (below == 0 || wall.empty() || other > kMaxUnsortedRowFraction * rows ||
+      occluded.inside_above_fraction > kMaxInsideAboveFraction)
+    return occluded;
+  const double wall_m = upperMedianInPlace(wall);
+  if (!(hiddenByWallM(line, wall_m) <= params.max_hidden_by_wall_m)) return occluded;
+  occluded.kind = EdgeKind::kDropBesideWall;
+  occluded.lowest_wall_m = occluded.highest_wall_m = wall_m;
+  return occluded;
 }
 
 /// Judges one stretch of an edge from its profile.
@@ -374,6 +406,10 @@ EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, doubl
       const float value = profile.offset_m[profile.at(row, offset)];
       if (!std::isnan(value)) inside_values.push_back(value);
     }
+  const auto inside_above = std::count_if(inside_values.begin(), inside_values.end(),
+                                          [step_m](double value) { return value > step_m; });
+  evidence.inside_above_fraction =
+      inside_values.empty() ? 0.0 : static_cast<double>(inside_above) / static_cast<double>(inside_values.size());
   const double inside = inside_values.empty() ? 0.0 : upperMedianInPlace(inside_values);
   const double rows = std::max(1, profile.rows);
   evidence.outside_offset_m = outside_values.empty() ? 0.0 : upperMedianInPlace(outside_values);
@@ -390,9 +426,16 @@ EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, doubl
   else if (above * 4 >= with_depth + missing && above > 0)
   {
     const bool all_along = above * 4 >= 3 * (with_depth + missing);
-    evidence.kind = all_along && hiddenByWallM(line, evidence.outside_offset_m) <= params.max_hidden_by_wall_m
-                        ? EdgeKind::kStepUp
-                        : EdgeKind::kOcclusion;
+    if (all_along)
+    {
+      evidence.kind = hiddenByWallM(line, evidence.outside_offset_m) <= params.max_hidden_by_wall_m
+                          ? EdgeKind::kStepUp
+                          : EdgeKind::kOcclusion;
+      if (evidence.kind == EdgeKind::kStepUp)
+        evidence.lowest_wall_m = evidence.highest_wall_m = evidence.outside_offset_m;
+    }
+    else
+      evidence = dropBesideWall(line, outside_values, below, with_depth + missing, step_m, params, evidence);
   }
   else if (with_depth < params.min_depth_fraction * (rows - border)) evidence.kind = EdgeKind::kNoDepth;
   else if (below >= coplanar || fallsAway(evidence.outside_offset_m, inside, with_depth, step_m, params))
@@ -426,6 +469,7 @@ int badness(EdgeKind kind)
     case EdgeKind::kMaskEdge: return 5;
     case EdgeKind::kUnknown: return 4;
     case EdgeKind::kStepUp: return 4;
+    case EdgeKind::kDropBesideWall: return 4;
     case EdgeKind::kColourLine: return 3;
     case EdgeKind::kSeam: return 2;
     case EdgeKind::kCrease: return 1;
@@ -438,7 +482,7 @@ int badness(EdgeKind kind)
 bool isRealEdge(EdgeKind kind, bool uniform_colour)
 {
   return kind == EdgeKind::kStepDown || kind == EdgeKind::kCrease || kind == EdgeKind::kSeam ||
-         kind == EdgeKind::kStepUp ||
+         kind == EdgeKind::kStepUp || kind == EdgeKind::kDropBesideWall ||
          (uniform_colour && kind == EdgeKind::kColourLine);
 }
 
@@ -452,6 +496,7 @@ std::string toString(EdgeKind kind)
     case EdgeKind::kColourLine: return "colour line";
     case EdgeKind::kOcclusion: return "occlusion boundary";
     case EdgeKind::kStepUp: return "step up to a wall standing on the edge";
+    case EdgeKind::kDropBesideWall: return "drop beside a neighbour's wall";
     case EdgeKind::kImageBorder: return "image border";
     case EdgeKind::kMaskEdge: return "continuing plane (no edge seen)";
     case EdgeKind::kNoDepth: return "edge without depth beyond it";
@@ -478,6 +523,7 @@ void EdgeEvidenceParams::validate() const
   check.require(seam_noise_factor >= 0.0, "seam_noise_factor", "must be >= 0");
   check.require(max_overrun_m > min_step_m, "max_overrun_m", "must be > min_step_m");
   check.require(max_hidden_by_wall_m >= 0.0, "max_hidden_by_wall_m", "must be >= 0");
+  check.require(max_wall_foot_shift_px >= 0, "max_wall_foot_shift_px", "must be >= 0");
   check.require(seam_search_px >= 0 && seam_search_px + kSeamArm <= probe_px, "seam_search_px",
           "must be in [0, probe_px - 3]");
 }
@@ -521,46 +567,119 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
   const Eigen::Vector2d start = a_px + margin * (b_px - a_px), end = b_px - margin * (b_px - a_px);
   // Short edges are examined in fewer stretches, each ~20 px at least.
   const int stretches = std::max(1, std::min(params.stretches, static_cast<int>((1.0 - 2.0 * margin) * length_px / 20.0)));
-  double lowest_step_up_m = std::numeric_limits<double>::infinity(), highest_step_up_m = -lowest_step_up_m;
-  int steps_up = 0;
+  double lowest_wall_m = std::numeric_limits<double>::infinity(), highest_wall_m = -lowest_wall_m;
+  // (Clear walls: nothing reaches over the face inside them.)
+  int walls = 0, clear_walls = 0, drops = 0, drops_beside_walls = 0;
   for (int k = 0; k < stretches; ++k)
   {
     const Eigen::Vector2d from = start + (static_cast<double>(k) / stretches) * (end - start);
     const Eigen::Vector2d to = start + (static_cast<double>(k + 1) / stretches) * (end - start);
     const EdgeEvidence stretch = judgeSpan(frame, plane, from, to, outward, params);
     if (k == 0 || badness(stretch.kind) > badness(worst.kind)) worst = stretch;
-    if (stretch.kind != EdgeKind::kStepUp) continue;
-    ++steps_up;
-    lowest_step_up_m = std::min(lowest_step_up_m, stretch.outside_offset_m);
-    highest_step_up_m = std::max(highest_step_up_m, stretch.outside_offset_m);
+    walls += stretch.kind == EdgeKind::kStepUp ? 1 : 0;
+    clear_walls += stretch.kind == EdgeKind::kStepUp && stretch.inside_above_fraction <= kMaxInsideAboveFraction;
+    drops_beside_walls += stretch.kind == EdgeKind::kDropBesideWall ? 1 : 0;
+    drops += stretch.kind == EdgeKind::kStepDown || stretch.kind == EdgeKind::kCrease ? 1 : 0;
+    if (std::isnan(stretch.lowest_wall_m)) continue;
+    lowest_wall_m = std::min(lowest_wall_m, stretch.lowest_wall_m);
+    highest_wall_m = std::max(highest_wall_m, stretch.highest_wall_m);
   }
   // A wall standing beside the face is one neighbour's, level with it: the
   // same height all along the edge. A wall over part of the edge only, or
   // one whose height changes along it (a tilted brick lying across the
-  // face's end), may be something lying over the face.
-  if (worst.kind == EdgeKind::kStepUp &&
-      (steps_up < stretches || highest_step_up_m - lowest_step_up_m > params.min_step_m))
+  // face's end), may be something lying over the face, which goes on
+  // beneath it: unless the surface drops away along the rest of the same
+  // line. The face ends there, and a box resting on it would stand inside
+  // that line, not beyond it.
+  const bool walls_and_drops_only = clear_walls + drops + drops_beside_walls == stretches;
+  if (walls_and_drops_only && clear_walls + drops_beside_walls > 0 && drops + drops_beside_walls > 0)
+    worst.kind = EdgeKind::kDropBesideWall;
+  else if (worst.kind == EdgeKind::kDropBesideWall ||
+           (worst.kind == EdgeKind::kStepUp && (walls < stretches || highest_wall_m - lowest_wall_m > params.min_step_m)))
     worst.kind = EdgeKind::kOcclusion;
+  // Walls all along it at several heights keep their heights: RoiFilter
+  // may still end the face there, when nothing resting on it could leave
+  // it the size it shows (as for a wall as high as a resting box).
+  const bool several_walls = clear_walls == stretches && worst.kind == EdgeKind::kOcclusion;
+  const bool walled =
+      several_walls || worst.kind == EdgeKind::kStepUp || worst.kind == EdgeKind::kDropBesideWall;
+  worst.lowest_wall_m = walled ? lowest_wall_m : std::numeric_limits<double>::quiet_NaN();
+  worst.highest_wall_m = walled ? highest_wall_m : std::numeric_limits<double>::quiet_NaN();
   return worst;
 }
 
 EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
                              const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
-                             const EdgeEvidenceParams& params, double step_up_height_m)
+                             const EdgeEvidenceParams& params, double lowest_wall_m, double highest_wall_m)
 {
+  if (std::isnan(highest_wall_m)) highest_wall_m = lowest_wall_m;
   const double length_px = (b_px - a_px).norm();
   if (!judgeable(length_px, outward_px, plane)) return EdgeKind::kUnknown;
   const Eigen::Vector2d outward = outward_px.normalized();
   const Eigen::Vector2d end_length = endMargin(length_px, params) * (b_px - a_px);
-  // (NaN, no step up of the edge's own: every step up at an end is nearer.)
+  // (NaN, no wall of the edge's own: every wall at an end is nearer.)
+  const auto oneOfTheWalls = [&](const EdgeEvidence& end) {
+    return end.lowest_wall_m >= lowest_wall_m - params.min_step_m &&
+           end.highest_wall_m <= highest_wall_m + params.min_step_m;
+  };
   const auto nearerOver = [&](const EdgeEvidence& end) {
     return end.kind == EdgeKind::kOcclusion ||
-           (end.kind == EdgeKind::kStepUp && !(std::abs(end.outside_offset_m - step_up_height_m) <= params.min_step_m));
+           ((end.kind == EdgeKind::kStepUp || end.kind == EdgeKind::kDropBesideWall) && !oneOfTheWalls(end));
   };
   if (nearerOver(judgeSpan(frame, plane, a_px, a_px + end_length, outward, params)) ||
       nearerOver(judgeSpan(frame, plane, b_px - end_length, b_px, outward, params)))
     return EdgeKind::kOcclusion;
   return EdgeKind::kUnknown;
+}
+
+double wallFootShiftPx(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
+                       const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
+                       const EdgeEvidenceParams& params)
+{
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  const double length_px = (b_px - a_px).norm();
+  const int reach = params.max_wall_foot_shift_px;
+  if (reach <= 0 || !judgeable(length_px, outward_px, plane)) return kNone;
+  const double margin = endMargin(length_px, params);
+  const Eigen::Vector2d from = a_px + margin * (b_px - a_px), to = b_px - margin * (b_px - a_px);
+  const ProfileLine line{frame, plane, from, to, outward_px.normalized(),
+                         profileRows(from, to, params.sample_spacing_px)};
+  const Profile profile = sampleProfile(line, -params.probe_px, reach, reach);
+  // The face's level and noise, clear of the edge's own pixels.
+  std::vector<double> inside;
+  for (int row = 0; row < profile.rows; ++row)
+    for (int offset = profile.min_offset; offset < -params.inner_gap_px; ++offset)
+      if (const float grey = profile.grey[profile.at(row, offset)]; !std::isnan(grey)) inside.push_back(grey);
+  if (inside.size() < 3) return kNone;
+  const RobustSpread face = robustSpread(inside);
+  // A median along the edge is about 1.25 sigma / sqrt(rows) off its level.
+  const double contrast =
+      std::max(params.min_line_contrast, params.seam_noise_factor * 1.25 * face.sigma / std::sqrt(profile.rows));
+  // How far each offset's median (along the edge) lies off the face.
+  std::vector<double> departure(static_cast<std::size_t>(reach) + 1);
+  std::vector<double> column;
+  for (int offset = 0; offset <= reach; ++offset)
+  {
+    column.clear();
+    for (int row = 0; row < profile.rows; ++row)
+      if (const float grey = profile.grey[profile.at(row, offset)]; !std::isnan(grey)) column.push_back(grey);
+    if (column.size() * 2 < static_cast<std::size_t>(profile.rows)) return kNone;
+    departure[static_cast<std::size_t>(offset)] = upperMedianInPlace(column) - face.centre;
+  }
+  const auto first = std::find_if(departure.begin(), departure.end(),
+                                  [contrast](double value) { return std::abs(value) > contrast; });
+  if (first == departure.end()) return kNone;
+  // The edge is where the first feature beyond it (a rim, the wall, a
+  // seam) reaches half its peak: half a pixel inside a sharp one.
+  const double sign = *first > 0.0 ? 1.0 : -1.0;
+  auto peak = first;
+  while (peak + 1 != departure.end() && sign * *(peak + 1) > sign * *peak) ++peak;
+  const double half = 0.5 * sign * *peak;
+  const auto crossing = std::find_if(departure.begin(), peak + 1, [&](double value) { return sign * value >= half; });
+  if (crossing == departure.begin()) return 0.0;
+  const double before = sign * *(crossing - 1), at = sign * *crossing;
+  const double offset = static_cast<double>(crossing - departure.begin());
+  return std::max(0.0, offset - 1.0 + (half - before) / std::max(1e-9, at - before));
 }
 
 SeamScore scoreSeam(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,

@@ -320,14 +320,17 @@ double unsegmentedCoplanarFraction(const RgbdFrame& frame, const BrickCandidate&
 }
 
 /// What lies beyond each quad edge (see edge_evidence.h). A step up to a
-/// wall as high as something resting on the face could be is an occlusion;
-/// its height goes to `resting_wall_m` when the edge's ends are clear.
+/// wall as high as something resting on the face could be, or to walls of
+/// several heights, is an occlusion (not a drop beside walls: the face ends
+/// there); its height goes to `resting_wall_m` when the edge's ends are
+/// clear. `beside_wall` marks the edges with walls the camera sees.
 EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate, const EdgeEvidenceParams& params,
                         const BrickCatalogue& catalogue, double resting_height_margin_m,
-                        std::array<double, 4>& resting_wall_m)
+                        std::array<double, 4>& resting_wall_m, std::array<bool, 4>& beside_wall)
 {
   EdgeKinds kinds;
   resting_wall_m.fill(std::numeric_limits<double>::quiet_NaN());
+  beside_wall.fill(false);
   for (int k = 0; k < 4; ++k)
   {
     const Eigen::Vector2d& a = candidate.corners_px[k];
@@ -336,18 +339,22 @@ EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate,
     if (outward.dot(0.5 * (a + b) - candidate.centroid_px) < 0.0) outward = -outward;
     const EdgeEvidence evidence = classifyEdge(frame, candidate.plane, a, b, outward, params);
     kinds[k] = evidence.kind;
-    if (kinds[k] == EdgeKind::kStepUp &&
-        catalogue.couldRiseTo(evidence.outside_offset_m, resting_height_margin_m))
+    beside_wall[k] = !std::isnan(evidence.lowest_wall_m);
+    const bool several_walls = kinds[k] == EdgeKind::kOcclusion && !std::isnan(evidence.lowest_wall_m);
+    if (several_walls ||
+        (kinds[k] == EdgeKind::kStepUp && catalogue.couldRiseTo(evidence.outside_offset_m, resting_height_margin_m)))
     {
       kinds[k] = EdgeKind::kOcclusion;
-      if (occlusionAtEdgeEnds(frame, candidate.plane, a, b, outward, params, evidence.outside_offset_m) !=
-          EdgeKind::kOcclusion)
-        resting_wall_m[k] = evidence.outside_offset_m;
+      if (occlusionAtEdgeEnds(frame, candidate.plane, a, b, outward, params, evidence.lowest_wall_m,
+                              evidence.highest_wall_m) != EdgeKind::kOcclusion)
+        resting_wall_m[k] = evidence.highest_wall_m;
     }
-    const double step_up_height_m =
-        kinds[k] == EdgeKind::kStepUp ? evidence.outside_offset_m : std::numeric_limits<double>::quiet_NaN();
+    // (A drop beside walls ends the face whatever their height.)
+    const bool walled = kinds[k] == EdgeKind::kStepUp || kinds[k] == EdgeKind::kDropBesideWall;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
     if (isRealEdge(kinds[k], true) &&
-        occlusionAtEdgeEnds(frame, candidate.plane, a, b, outward, params, step_up_height_m) == EdgeKind::kOcclusion)
+        occlusionAtEdgeEnds(frame, candidate.plane, a, b, outward, params, walled ? evidence.lowest_wall_m : nan,
+                            walled ? evidence.highest_wall_m : nan) == EdgeKind::kOcclusion)
       kinds[k] = EdgeKind::kOcclusion;
   }
   // The profiles stay clear of the corners, so a corner just past the border
@@ -435,6 +442,37 @@ int longEdgeStart(const QuadCorners& corners_px, const std::array<Eigen::Vector3
   const Eigen::Vector2d& b = corners_px[start + 2];
   const bool a_first = a.y() < b.y() - 1e-9 || (std::abs(a.y() - b.y()) <= 1e-9 && a.x() <= b.x());
   return a_first ? start : start + 2;
+}
+
+/// Where the image line through `p` along `along` meets the one through
+/// `q` along `other`; `p` itself when they are (nearly) parallel.
+Eigen::Vector2d meet(const Eigen::Vector2d& p, const Eigen::Vector2d& along, const Eigen::Vector2d& q,
+                     const Eigen::Vector2d& other)
+{
+  const double cross = along.x() * other.y() - along.y() * other.x();
+  if (std::abs(cross) < 1e-9 * along.norm() * other.norm()) return p;
+  const Eigen::Vector2d to_q = q - p;
+  return p + ((to_q.x() * other.y() - to_q.y() * other.x()) / cross) * along;
+}
+
+/// The quad with edge k (corner k to k + 1) moved `shift_px` away from
+/// `inside_px`, its corners sliding along the neighbouring edges.
+std::array<Eigen::Vector2d, 4> withEdgeMovedOut(std::array<Eigen::Vector2d, 4> corners, int k, double shift_px,
+                                                const Eigen::Vector2d& inside_px)
+{
+  const Eigen::Vector2d& a = corners[k];
+  const Eigen::Vector2d& b = corners[(k + 1) % 4];
+  const Eigen::Vector2d along = b - a;
+  Eigen::Vector2d outward = Eigen::Vector2d(along.y(), -along.x()).normalized();
+  if (outward.dot(0.5 * (a + b) - inside_px) < 0.0) outward = -outward;
+  const Eigen::Vector2d on_line = a + shift_px * outward;
+  const Eigen::Vector2d& before = corners[(k + 3) % 4];
+  const Eigen::Vector2d& after = corners[(k + 2) % 4];
+  const Eigen::Vector2d new_a = meet(on_line, along, before, a - before);
+  const Eigen::Vector2d new_b = meet(on_line, along, after, b - after);
+  corners[k] = new_a;
+  corners[(k + 1) % 4] = new_b;
+  return corners;
 }
 }  // namespace
 
@@ -747,7 +785,7 @@ bool RoiFilter::standsUpFromItsSurroundings(const RgbdFrame& frame, const Segmen
   const int inner_px = std::max(1, params_.edges.probe_px / 2);
   const int outer_px = inner_px + params_.edges.probe_px;
   return measureOutlineSurroundings(frame, segment, plane, params_.edges.stepM(plane.rms_m), inner_px, outer_px)
-      .fallsAway();
+      .fallsAwayBesideWalls();
 }
 
 bool RoiFilter::oneTileWide(const BrickCandidate& candidate) const
@@ -939,8 +977,22 @@ std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const S
   candidate.inset_fill_ratio = rim_may_explain ? insetFillRatio(outlines, *quad, params_.ragged_outline_px)
                                                : std::numeric_limits<double>::quiet_NaN();
   const int start = longEdgeStart(*quad, corners_m);
-  candidate.corners_px = rotated(*quad, start);
-  candidate.corners_m = rotated(corners_m, start);
+  placeCorners(camera, rotated(*quad, start), rotated(corners_m, start), candidate);
+  std::array<bool, 4> beside_wall{};
+  candidate.edge_kinds = classifyEdges(frame, candidate, edges, catalogue_, params_.resting_height_margin_m,
+                                       candidate.resting_wall_m, beside_wall);
+  moveEdgesToWallFeet(frame, edges, beside_wall, candidate);
+  for (int k = 0; k < 4; ++k)
+    candidate.edge_truncated[k] =
+        candidate.edge_kinds[k] == EdgeKind::kImageBorder || candidate.edge_kinds[k] == EdgeKind::kOcclusion;
+  return std::nullopt;
+}
+
+void RoiFilter::placeCorners(const PinholeCamera& camera, const QuadCorners& corners_px,
+                             const std::array<Eigen::Vector3d, 4>& corners_m, BrickCandidate& candidate)
+{
+  candidate.corners_px = corners_px;
+  candidate.corners_m = corners_m;
   const auto& c = candidate.corners_m;
   candidate.length_m = 0.5 * ((c[1] - c[0]).norm() + (c[2] - c[3]).norm());
   candidate.width_m = longEdgeSeparation(c);
@@ -952,12 +1004,34 @@ std::optional<std::string> RoiFilter::fitOutline(const RgbdFrame& frame, const S
   candidate.t2_m = candidate.centroid_m - 0.25 * candidate.length_m * long_axis;
   candidate.t1_px = camera.project(candidate.t1_m);
   candidate.t2_px = camera.project(candidate.t2_m);
-  candidate.edge_kinds =
-      classifyEdges(frame, candidate, edges, catalogue_, params_.resting_height_margin_m, candidate.resting_wall_m);
+}
+
+void RoiFilter::moveEdgesToWallFeet(const RgbdFrame& frame, const EdgeEvidenceParams& edges,
+                                    const std::array<bool, 4>& beside_wall, BrickCandidate& candidate) const
+{
+  // A taller neighbour's depth reaches a few pixels over the face beside
+  // it, so the segment, and its quad, end short of the face's edge there
+  // (by 1-2 cm a side at 2 m in VGA: a face between two walls measured a
+  // smaller box). The colour image shows the edge itself.
+  std::array<Eigen::Vector2d, 4> corners_px = candidate.corners_px;
+  bool moved = false;
   for (int k = 0; k < 4; ++k)
-    candidate.edge_truncated[k] =
-        candidate.edge_kinds[k] == EdgeKind::kImageBorder || candidate.edge_kinds[k] == EdgeKind::kOcclusion;
-  return std::nullopt;
+  {
+    if (!beside_wall[k]) continue;
+    const Eigen::Vector2d& a = corners_px[k];
+    const Eigen::Vector2d& b = corners_px[(k + 1) % 4];
+    Eigen::Vector2d outward(b.y() - a.y(), a.x() - b.x());
+    if (outward.dot(0.5 * (a + b) - candidate.centroid_px) < 0.0) outward = -outward;
+    const double shift_px = wallFootShiftPx(frame, candidate.plane, a, b, outward, edges);
+    if (!(shift_px > 0.0)) continue;
+    corners_px = withEdgeMovedOut(corners_px, k, shift_px, candidate.centroid_px);
+    moved = true;
+  }
+  if (!moved) return;
+  std::array<Eigen::Vector3d, 4> corners_m;
+  for (int k = 0; k < 4; ++k)
+    if (!candidate.plane.intersectRay(frame.camera.ray(corners_px[k].x(), corners_px[k].y()), corners_m[k])) return;
+  placeCorners(frame.camera, corners_px, corners_m, candidate);
 }
 
 std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const FrameContext& context,
