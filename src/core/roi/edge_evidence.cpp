@@ -291,16 +291,6 @@ float profileOffsetM(const Profile& profile, const ProfileLine& line, int row, i
 /// band raised above the plane (a cover merged into the face) says nothing
 /// about where the face ends.
 constexpr int kMinRowsToFallAway = 8;
-
-/// A stretch beside a neighbour's end may hold this share of rows neither
-/// dropping nor rising: the neighbour's rounded corner, smoothed by the
-/// stereo window.
-constexpr double kMaxUnsortedRowFraction = 0.2;
-
-/// A wall stands beside the face only where the band just inside the edge
-/// is on the face's plane: something reaching over the face shows there
-/// too (the least-area quad runs past the notch it cuts).
-constexpr double kMaxInsideAboveFraction = 0.05;
 bool fallsAway(double outside_m, double inside_m, int rows_with_depth, double step_m,
                const EdgeEvidenceParams& params)
 {
@@ -330,10 +320,21 @@ double hiddenByWallM(const ProfileLine& line, double height_m)
   return height_m * -middle_m.dot(outward_m.normalized()) / std::abs(rise);
 }
 
+/// A stretch beside a neighbour's end may hold this share of rows neither
+/// dropping nor rising: the neighbour's rounded corner, smoothed by the
+/// stereo window.
+constexpr double kMaxUnsortedRowFraction = 0.2;
+
+/// A wall stands beside the face only where the band just inside the edge
+/// is on the face's plane: something reaching over the face shows there
+/// too (the least-area quad runs past the notch it cuts).
+constexpr double kMaxInsideAboveFraction = 0.05;
+
 /// A stretch whose rows either drop away or rise to a wall (a neighbour's
-/// end falls inside it) is kDropBesideWall when the camera sees that wall;
-/// any level or unread rows beyond a few (the neighbour's rounded corner)
-/// leave `occluded` as it is.
+/// end falls inside it) is kDropBesideWall when the camera sees that wall
+/// and nothing rises inside the edge; otherwise, or with more level or
+/// unread rows than a rounded corner leaves, it is `occluded`, an
+/// occlusion.
 EdgeEvidence dropBesideWall(const ProfileLine& line, const std::vector<double>& outside_values, int below,
                             int rows, double step_m, const EdgeEvidenceParams& params, EdgeEvidence occluded)
 {
@@ -577,7 +578,8 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
     const EdgeEvidence stretch = judgeSpan(frame, plane, from, to, outward, params);
     if (k == 0 || badness(stretch.kind) > badness(worst.kind)) worst = stretch;
     walls += stretch.kind == EdgeKind::kStepUp ? 1 : 0;
-    clear_walls += stretch.kind == EdgeKind::kStepUp && stretch.inside_above_fraction <= kMaxInsideAboveFraction;
+    const bool clear = stretch.inside_above_fraction <= kMaxInsideAboveFraction;
+    clear_walls += stretch.kind == EdgeKind::kStepUp && clear ? 1 : 0;
     drops_beside_walls += stretch.kind == EdgeKind::kDropBesideWall ? 1 : 0;
     drops += stretch.kind == EdgeKind::kStepDown || stretch.kind == EdgeKind::kCrease ? 1 : 0;
     if (std::isnan(stretch.lowest_wall_m)) continue;
@@ -595,7 +597,8 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
   if (walls_and_drops_only && clear_walls + drops_beside_walls > 0 && drops + drops_beside_walls > 0)
     worst.kind = EdgeKind::kDropBesideWall;
   else if (worst.kind == EdgeKind::kDropBesideWall ||
-           (worst.kind == EdgeKind::kStepUp && (walls < stretches || highest_wall_m - lowest_wall_m > params.min_step_m)))
+           (worst.kind == EdgeKind::kStepUp &&
+            (walls < stretches || highest_wall_m - lowest_wall_m > params.min_step_m)))
     worst.kind = EdgeKind::kOcclusion;
   // Walls all along it at several heights keep their heights: RoiFilter
   // may still end the face there, when nothing resting on it could leave
