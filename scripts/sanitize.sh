@@ -39,10 +39,14 @@ build_s=$(( $(date +%s) - start_s ))
 # build (on 038f7d6 the first found 2 of its 4 reds here, 4 in the gcc
 # build), so they judge the rules in the release build's tests; the rules'
 # code runs here in every other FaceTiling test.
+# RaisedLayer.ALowRowBesideTallerBoxesIsTiled renders bench pallet-layer
+# frame 148, which this clang build renders differently (its truth has 6
+# whole tops, 11 in the gcc build); it runs in the release build's tests,
+# and the rule's code runs here in the frame-129 test beside it.
 # SceneChange's two noise sweeps render about 50 rig frames each (2-3 min
 # each under ASan); the comparison code runs here in the other SceneChange
 # tests.
-ctest_args=${CTEST_ARGS:--E ^(MosdFrontEnd\.|TopFaceCheck\.FourTouchingBricksMergedIntoALongerTypesSizeAreNotComplete$|FaceTiling\.(ALineTooCloseToAnEdgeForABrickBeyondItIsNoEdge|AZOfTwoRedsSideBySideIsCutAlongTheLineTheyShare)$|SceneChange\.(FreshSensorNoiseOnAStaticSceneIsNoChange|AWholeTopShifted5mmOrTurned2DegIsAChange)$)}
+ctest_args=${CTEST_ARGS:--E ^(MosdFrontEnd\.|TopFaceCheck\.FourTouchingBricksMergedIntoALongerTypesSizeAreNotComplete$|FaceTiling\.(ALineTooCloseToAnEdgeForABrickBeyondItIsNoEdge|AZOfTwoRedsSideBySideIsCutAlongTheLineTheyShare)$|RaisedLayer\.ALowRowBesideTallerBoxesIsTiled$|SceneChange\.(FreshSensorNoiseOnAStaticSceneIsNoChange|AWholeTopShifted5mmOrTurned2DegIsAChange)$)}
 (cd "$build_dir" && ctest --output-on-failure -j"$jobs" $ctest_args) 2>&1 | tee "$log"
 ctest_status=${PIPESTATUS[0]}
 total_s=$(( $(date +%s) - start_s ))
