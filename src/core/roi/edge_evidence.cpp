@@ -659,15 +659,13 @@ double wallFootShiftPx(const RgbdFrame& frame, const PlaneFit& plane, const Eige
   const double contrast =
       std::max(params.min_line_contrast, params.seam_noise_factor * 1.25 * face.sigma / std::sqrt(profile.rows));
   // How far each offset's median (along the edge) lies off the face.
+  const std::vector<double> medians = columnMedians(profile, profile.grey, 0, reach);
   std::vector<double> departure(static_cast<std::size_t>(reach) + 1);
-  std::vector<double> column;
   for (int offset = 0; offset <= reach; ++offset)
   {
-    column.clear();
-    for (int row = 0; row < profile.rows; ++row)
-      if (const float grey = profile.grey[profile.at(row, offset)]; !std::isnan(grey)) column.push_back(grey);
-    if (column.size() * 2 < static_cast<std::size_t>(profile.rows)) return kNone;
-    departure[static_cast<std::size_t>(offset)] = upperMedianInPlace(column) - face.centre;
+    const double median = medians[static_cast<std::size_t>(offset - profile.min_offset)];
+    if (std::isnan(median)) return kNone;  // fewer than half the rows in the image
+    departure[static_cast<std::size_t>(offset)] = median - face.centre;
   }
   const auto first = std::find_if(departure.begin(), departure.end(),
                                   [contrast](double value) { return std::abs(value) > contrast; });

@@ -319,6 +319,16 @@ double unsegmentedCoplanarFraction(const RgbdFrame& frame, const BrickCandidate&
   return quad_px > 0 ? static_cast<double>(coplanar_px) / quad_px : 0.0;
 }
 
+/// The image direction away from `inside_px` across quad edge k (corner k
+/// to k + 1), not unit.
+Eigen::Vector2d outwardOf(const QuadCorners& corners_px, int k, const Eigen::Vector2d& inside_px)
+{
+  const Eigen::Vector2d& a = corners_px[k];
+  const Eigen::Vector2d& b = corners_px[(k + 1) % 4];
+  const Eigen::Vector2d outward(b.y() - a.y(), a.x() - b.x());
+  return outward.dot(0.5 * (a + b) - inside_px) < 0.0 ? Eigen::Vector2d(-outward) : outward;
+}
+
 /// What lies beyond each quad edge (see edge_evidence.h). A step up to a
 /// wall as high as something resting on the face could be, or to walls of
 /// several heights, is an occlusion (not a drop beside walls: the face ends
@@ -335,8 +345,7 @@ EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate,
   {
     const Eigen::Vector2d& a = candidate.corners_px[k];
     const Eigen::Vector2d& b = candidate.corners_px[(k + 1) % 4];
-    Eigen::Vector2d outward(b.y() - a.y(), a.x() - b.x());
-    if (outward.dot(0.5 * (a + b) - candidate.centroid_px) < 0.0) outward = -outward;
+    const Eigen::Vector2d outward = outwardOf(candidate.corners_px, k, candidate.centroid_px);
     const EdgeEvidence evidence = classifyEdge(frame, candidate.plane, a, b, outward, params);
     kinds[k] = evidence.kind;
     beside_wall[k] = !std::isnan(evidence.lowest_wall_m);
@@ -349,12 +358,11 @@ EdgeKinds classifyEdges(const RgbdFrame& frame, const BrickCandidate& candidate,
                               evidence.highest_wall_m) != EdgeKind::kOcclusion)
         resting_wall_m[k] = evidence.highest_wall_m;
     }
-    // (A drop beside walls ends the face whatever their height.)
-    const bool walled = kinds[k] == EdgeKind::kStepUp || kinds[k] == EdgeKind::kDropBesideWall;
-    const double nan = std::numeric_limits<double>::quiet_NaN();
+    // (A drop beside walls ends the face whatever their height. Real
+    // kinds other than walls carry no wall heights: NaN.)
     if (isRealEdge(kinds[k], true) &&
-        occlusionAtEdgeEnds(frame, candidate.plane, a, b, outward, params, walled ? evidence.lowest_wall_m : nan,
-                            walled ? evidence.highest_wall_m : nan) == EdgeKind::kOcclusion)
+        occlusionAtEdgeEnds(frame, candidate.plane, a, b, outward, params, evidence.lowest_wall_m,
+                            evidence.highest_wall_m) == EdgeKind::kOcclusion)
       kinds[k] = EdgeKind::kOcclusion;
   }
   // The profiles stay clear of the corners, so a corner just past the border
@@ -463,9 +471,7 @@ std::array<Eigen::Vector2d, 4> withEdgeMovedOut(std::array<Eigen::Vector2d, 4> c
   const Eigen::Vector2d& a = corners[k];
   const Eigen::Vector2d& b = corners[(k + 1) % 4];
   const Eigen::Vector2d along = b - a;
-  Eigen::Vector2d outward = Eigen::Vector2d(along.y(), -along.x()).normalized();
-  if (outward.dot(0.5 * (a + b) - inside_px) < 0.0) outward = -outward;
-  const Eigen::Vector2d on_line = a + shift_px * outward;
+  const Eigen::Vector2d on_line = a + shift_px * outwardOf(corners, k, inside_px).normalized();
   const Eigen::Vector2d& before = corners[(k + 3) % 4];
   const Eigen::Vector2d& after = corners[(k + 2) % 4];
   const Eigen::Vector2d new_a = meet(on_line, along, before, a - before);
@@ -1018,11 +1024,8 @@ void RoiFilter::moveEdgesToWallFeet(const RgbdFrame& frame, const EdgeEvidencePa
   for (int k = 0; k < 4; ++k)
   {
     if (!beside_wall[k]) continue;
-    const Eigen::Vector2d& a = corners_px[k];
-    const Eigen::Vector2d& b = corners_px[(k + 1) % 4];
-    Eigen::Vector2d outward(b.y() - a.y(), a.x() - b.x());
-    if (outward.dot(0.5 * (a + b) - candidate.centroid_px) < 0.0) outward = -outward;
-    const double shift_px = wallFootShiftPx(frame, candidate.plane, a, b, outward, edges);
+    const double shift_px = wallFootShiftPx(frame, candidate.plane, corners_px[k], corners_px[(k + 1) % 4],
+                                            outwardOf(corners_px, k, candidate.centroid_px), edges);
     if (!(shift_px > 0.0)) continue;
     corners_px = withEdgeMovedOut(corners_px, k, shift_px, candidate.centroid_px);
     moved = true;
