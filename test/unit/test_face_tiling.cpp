@@ -17,6 +17,7 @@
 #include "brick_pose/sim/d415_modes.h"
 #include "brick_pose/sim/scene_generator.h"
 #include "brick_pose/sim/synthetic_rig.h"
+#include "pallet_bench_frame.h"
 #include "synthetic_plate_scene.h"
 #include "touching_plates_scene.h"
 
@@ -355,6 +356,29 @@ TEST(FaceTiling, AZOfTwoRedsSideBySideIsCutAlongTheLineTheyShare)
     complete += c.complete ? 1 : 0;
   }
   EXPECT_GE(complete, 1);
+}
+
+TEST(FaceTiling, AZOfTwoRedsWithARaggedOutlineIsTiledAlongTheBricks)
+{
+  // The same Z at 640x480 in sunlight: its outline so ragged that its sides
+  // did not stand out (see OutlineAxis.ARaggedOutlineStillGivesItsAxis), and
+  // the tiling on the quad's axes, 5 degrees off the bricks, fitted one red.
+  const FrontEndResult result = touchingRowsBenchFrame(122, "640x480", 2u);
+  ASSERT_EQ(result.candidates.size(), 2u);
+  for (const BrickCandidate& c : result.candidates) EXPECT_EQ(c.type_name, "red");
+}
+
+TEST(FaceTiling, ALayerIsAnchoredWhereItEndsThoughItsGridSidesTouchItNowhere)
+{
+  // bench_frontend's pallet-layer frame 146 (sunlight, colour-free, VGA).
+  // The grid spans the quad's corners on the outline's axes; where the quad
+  // lies askew of them, the grid's sides touch the layer nowhere and no
+  // tile could start at its outer corners: the tiling stopped early, and
+  // 6 of the frame's 11 whole tops were found (9 with the lines where the
+  // layer starts and ends).
+  const test::WholeTops tops = test::palletLayerBenchFrame(146, "640x480");
+  ASSERT_GE(tops.whole, 10) << "the frame's layout";
+  EXPECT_GE(tops.found, 8) << tops.found << " of " << tops.whole << " whole tops found";
 }
 
 TEST(FaceTiling, MixedLayerOfAGreenAndTwoRedsIsTiledWithBothSizes)

@@ -74,6 +74,52 @@ TEST(OutlineAxis, OffsetRectanglesGiveTheirOwnAxisNotTheirHull)
   EXPECT_GT(axis->support, 0.8);
 }
 
+/// Bites and bumps of `radius_px` every `step_px` along each side of
+/// `polygon`, alternately taken out of the mask and added to it: a depth edge
+/// ragged with noise and fattening.
+void rag(cv::Mat& mask, const std::vector<cv::Point>& polygon, int step_px, int radius_px)
+{
+  bool bite = true;
+  for (std::size_t k = 0; k < polygon.size(); ++k)
+  {
+    const cv::Point2d a = polygon[k], b = polygon[(k + 1) % polygon.size()];
+    const int count = static_cast<int>(cv::norm(b - a) / step_px);
+    for (int n = 1; n < count; ++n, bite = !bite)
+    {
+      const cv::Point2d at = a + (b - a) * (static_cast<double>(n) / count);
+      cv::circle(mask, cv::Point(static_cast<int>(at.x), static_cast<int>(at.y)), radius_px,
+                 cv::Scalar(bite ? 0 : 255), cv::FILLED);
+    }
+  }
+}
+
+TEST(OutlineAxis, ARaggedOutlineStillGivesItsAxis)
+{
+  // Touching rows frame 122 (VGA, sunlight): two reds side by side in a Z,
+  // their outline ragged with the sensor's noise. Much of it broke into
+  // pieces of a few pixels at every angle; the stretches along the sides
+  // held 0.59 of its length, short of the 0.6 asked, so the tiling kept the
+  // quad's axis, 5 degrees off the bricks, and fitted one brick of the two.
+  // Without the short pieces they hold 0.69. Here: 0.73, and 0.49 with them.
+  PlaneFit plane;
+  const RgbdFrame frame = frontoParallel(plane);
+  const double turn = 20.0 * kPi / 180.0;
+  const cv::Point2d along(std::cos(turn), std::sin(turn)), across(-std::sin(turn), std::cos(turn));
+  const cv::Point2d centre(300.0, 240.0);
+  const std::vector<cv::Point> first = turnedRectangle(centre - 60.0 * across, 180.0, 120.0, turn);
+  const std::vector<cv::Point> second = turnedRectangle(centre + 60.0 * across + 60.0 * along, 180.0, 120.0, turn);
+  Segment segment = maskOf({first, second});
+  rag(segment.mask, first, 20, 4);
+  rag(segment.mask, second, 20, 4);
+  const std::optional<OutlineAxis> axis = dominantOutlineAxis(frame, segment, plane);
+  ASSERT_TRUE(axis.has_value());
+  EXPECT_NEAR(imageAngleDeg(axis->direction), 20.0, 1.0);
+  // The pieces counted, the sides hold too little of the outline.
+  OutlineAxisParams every_piece;
+  every_piece.min_stretch_px = 0.0;
+  EXPECT_FALSE(dominantOutlineAxis(frame, segment, plane, every_piece).has_value());
+}
+
 TEST(OutlineAxis, SidesAlongTheImageBorderDoNotVote)
 {
   // A layer turned by 20 degrees running out of the image at its top-left

@@ -7,15 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "brick_pose/eval/candidate_matching.h"
-#include "brick_pose/eval/rig_truth.h"
-#include "brick_pose/frame/frame_builder.h"
-#include "brick_pose/pipeline/front_end.h"
 #include "brick_pose/roi/raised_layer.h"
 #include "brick_pose/segmentation/segment.h"
 #include "brick_pose/sim/d415_modes.h"
-#include "brick_pose/sim/scene_generator.h"
-#include "brick_pose/sim/synthetic_rig.h"
+#include "pallet_bench_frame.h"
 #include "touching_plates_scene.h"
 
 namespace brick_pose
@@ -129,48 +124,6 @@ TEST(RaisedLayer, ALowRowBetweenADropAndTallerNeighboursFallsAwayBesideTheirWall
   EXPECT_FALSE(sliver.fallsAwayBesideWalls());
 }
 
-namespace
-{
-/// Whole tops in view and found, of bench_frontend's pallet-layer frame
-/// `frame` run colour-free as the benchmark runs it (seed, lighting, the
-/// ground given as the support), with no face found complete that is not.
-struct WholeTops
-{
-  int whole = 0;
-  int found = 0;
-};
-
-WholeTops palletLayerBenchFrame(int frame, const std::string& resolution)
-{
-  const BrickCatalogue boxes = BrickCatalogue::fromYamlFile(BRICK_POSE_SOURCE_DIR "/config/boxes.yaml");
-  const int index = frame - 125;
-  const std::uint64_t seed = 1000003ULL + 5000000ULL + static_cast<std::uint64_t>(index);
-  const sim::Scene scene =
-      sim::SceneGenerator(boxes, sim::SceneParams::defaultsFor(sim::SceneKind::kPalletLayer)).generate(seed);
-  sim::SensorModel sensor = sim::SensorModel::d4xx();
-  const sim::Lighting lightings[3] = {sim::Lighting::kNormal, sim::Lighting::kSunlight, sim::Lighting::kLowLight};
-  sensor.lighting = lightings[index % 3];
-  const sim::SyntheticFrame synthetic = sim::SyntheticRig(sim::d415ColourMode(resolution), sensor).render(scene, seed);
-  FrameHeader header;
-  header.stamp_ns = 1;
-  const RgbdFrame rgbd = makeRgbdFrame(synthetic.rgb, synthetic.depth_mm, synthetic.camera, header);
-  FrontEndParams params;
-  params.mode = SegmentationMode::kColourFree;
-  const Eigen::Vector3d up = scene.world_T_camera.linear().transpose() * Eigen::Vector3d::UnitZ();
-  params.roi.up_direction = up;
-  params.roi.support_plane = Eigen::Vector4d(up.x(), up.y(), up.z(), scene.world_T_camera.translation().z());
-  const FrontEndResult result = FrontEnd(boxes, params).process(rgbd);
-  const eval::FrameMatch match = eval::matchCandidates(result.candidates, eval::rigSceneTruth(synthetic, up), synthetic.camera);
-  WholeTops tops;
-  for (const eval::TopMatch& top : match.tops)
-  {
-    tops.whole += top.whole_in_view ? 1 : 0;
-    tops.found += top.whole_in_view && top.found ? 1 : 0;
-  }
-  for (const eval::CandidateMatch& candidate : match.candidates) EXPECT_FALSE(candidate.false_complete);
-  return tops;
-}
-}  // namespace
 
 // bench_frontend's pallet-layer frame 149 (normal light, colour-free, VGA):
 // seven boxes touching in a U, the pallet seen in its notch. The sides of
@@ -180,7 +133,7 @@ WholeTops palletLayerBenchFrame(int frame, const std::string& resolution)
 // stands up from the pallet all round.
 TEST(RaisedLayer, ALayerOfBoxesInNoRectangleIsTiledIntoWholeBoxes)
 {
-  const WholeTops tops = palletLayerBenchFrame(149, "640x480");
+  const test::WholeTops tops = test::palletLayerBenchFrame(149, "640x480");
   ASSERT_GE(tops.whole, 6) << "the frame's layout";
   EXPECT_GE(2 * tops.found, tops.whole) << tops.found << " of " << tops.whole << " whole tops found";
 }
@@ -192,7 +145,7 @@ TEST(RaisedLayer, ALayerOfBoxesInNoRectangleIsTiledIntoWholeBoxes)
 // Beside the walls it drops away all round.
 TEST(RaisedLayer, ALowRowBesideTallerBoxesIsTiled)
 {
-  const WholeTops tops = palletLayerBenchFrame(148, "640x480");
+  const test::WholeTops tops = test::palletLayerBenchFrame(148, "640x480");
   ASSERT_GE(tops.whole, 10) << "the frame's layout";
   EXPECT_GE(tops.found, 6) << tops.found << " of " << tops.whole << " whole tops found";
 }
@@ -206,7 +159,7 @@ TEST(RaisedLayer, ALowRowBesideTallerBoxesIsTiled)
 // face ends there) and measured to where their colour ends, they are found.
 TEST(RaisedLayer, BoxesBetweenTallerNeighboursAreMeasuredToTheirColourEdges)
 {
-  const WholeTops tops = palletLayerBenchFrame(129, "640x480");
+  const test::WholeTops tops = test::palletLayerBenchFrame(129, "640x480");
   ASSERT_GE(tops.whole, 8) << "the frame's layout";
   EXPECT_GE(tops.found, tops.whole - 1) << tops.found << " of " << tops.whole << " whole tops found";
 }

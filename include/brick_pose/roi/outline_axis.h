@@ -24,6 +24,10 @@ struct OutlineAxisParams
   /// Straight stretches are found by simplifying the outline to this many
   /// pixels.
   double simplify_px = 2.0;
+  /// Stretches shorter than this (pixels) neither vote nor count in the
+  /// outline's length: a depth edge ragged with noise and fattening breaks
+  /// into many short pieces at every angle, which would dilute the sides.
+  double min_stretch_px = 8.0;
   /// Stretches within this angle (modulo a quarter turn) of the peak vote
   /// for it.
   double agree_deg = 4.0;

@@ -491,7 +491,13 @@ public:
             Placed candidate = place(type, long_along_s, anchor, best.score);
             if (candidate.type && candidate.score > best.score) best = candidate;
           }
-      if (!best.type) break;
+      if (!best.type)
+      {
+        if (extent_lines_added_) break;
+        addExtentLines();
+        extent_lines_added_ = true;
+        continue;
+      }
       take(best);
       placed.push_back(best);
       if (free_.count(0, grid_.nx(), 0, grid_.ny()) < 0.05 * total_free) break;
@@ -1033,6 +1039,33 @@ private:
     return true;
   }
 
+  /// The grid spans the quad's corners. Where its axis is the outline's and
+  /// not the quad's (two rows offset along their length: the least-area quad
+  /// of that Z lies askew), the grid's sides touch the segment nowhere, and
+  /// the outer corners of its bricks lie on no line to anchor a tile at.
+  /// When no tile fits any more, the lines where the untiled region starts
+  /// and ends are added once, and the tiling goes on from them. Only then:
+  /// from the start, their anchors would also compete where the quad's own
+  /// serve, and change tilings that were right. A line counts from
+  /// kAnchorBand cells of the region on (a stray cell of noise is no side).
+  void addExtentLines()
+  {
+    auto extent = [&](bool along_s, std::set<int>& lines) {
+      const int count = along_s ? grid_.nx() : grid_.ny();
+      auto cellsAt = [&](int k) {
+        return along_s ? free_.count(k, k + 1, 0, grid_.ny()) : free_.count(0, grid_.nx(), k, k + 1);
+      };
+      int first = 0, last = count - 1;
+      while (first < count && cellsAt(first) < kAnchorBand) ++first;
+      while (last > first && cellsAt(last) < kAnchorBand) --last;
+      if (first >= last) return;
+      if (first > tolerance_cells_) lines.insert(first);
+      if (last + 1 < count - tolerance_cells_) lines.insert(last + 1);
+    };
+    extent(true, s_lines_);
+    extent(false, t_lines_);
+  }
+
   static int narrowestCells(const std::vector<const BrickType*>& types, double cell_m)
   {
     double narrowest_m = std::numeric_limits<double>::infinity();
@@ -1064,6 +1097,7 @@ private:
   CellCounts off_image_;  ///< cells off the image (fixed)
   int narrowest_cells_;   ///< the narrowest tile's width (see roomBeyond())
   std::set<int> s_lines_, t_lines_;
+  bool extent_lines_added_ = false;  ///< see addExtentLines()
   std::map<FitKey, KeptFit> fits_;  ///< see place()
 };
 

@@ -76,6 +76,7 @@ std::optional<OutlineAxis> dominantOutlineAxis(const RgbdFrame& frame, const Seg
     {
       const cv::Point a = polygon[k] + offset, b = polygon[(k + 1) % polygon.size()] + offset;
       if (onBorder(a) && onBorder(b)) continue;
+      if (cv::norm(b - a) < params.min_stretch_px) continue;
       Eigen::Vector3d a_m, b_m;
       if (!plane.intersectRay(frame.camera.ray(a.x, a.y), a_m) || !plane.intersectRay(frame.camera.ray(b.x, b.y), b_m))
         continue;
