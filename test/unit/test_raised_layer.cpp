@@ -163,4 +163,16 @@ TEST(RaisedLayer, BoxesBetweenTallerNeighboursAreMeasuredToTheirColourEdges)
   ASSERT_GE(tops.whole, 8) << "the frame's layout";
   EXPECT_GE(tops.found, tops.whole - 1) << tops.found << " of " << tops.whole << " whole tops found";
 }
+// Frame 139 (sunlight, 848x480): each of a row of boxes beside taller
+// neighbours had an edge whose wall read one height along it and another at
+// its ends (a seen wall reads as the height the profile meets it at), taken
+// for something lying across the corner: 7 of the frame's 8 whole tops were
+// found. A seen wall at an end, with the face clear inside it, stands
+// beside the corner (EdgeEvidence.AWallOverAWholeEdgeEnd...).
+TEST(RaisedLayer, AnotherWallSeenBesideACornerLeavesTheBoxWhole)
+{
+  const test::WholeTops tops = test::palletLayerBenchFrame(139, "848x480");
+  ASSERT_GE(tops.whole, 7) << "the frame's layout";
+  EXPECT_EQ(tops.found, tops.whole) << tops.found << " of " << tops.whole << " whole tops found";
+}
 }  // namespace brick_pose

@@ -164,7 +164,9 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
 /// step up at an end is such a surface too, unless the edge is itself kept
 /// as the face's end beside walls from `lowest_wall_m` to `highest_wall_m`
 /// high (NaN: none; one height: pass it once), and the end's wall lies in
-/// that range (within min_step_m): then it is one of those walls.
+/// that range (within min_step_m): then it is one of those walls. Beside
+/// such an edge, a wall of another height the camera sees at an end, with
+/// the face clear just inside it, is a neighbour beside the corner: kUnknown.
 EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
                              const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
                              const EdgeEvidenceParams& params = EdgeEvidenceParams(),

@@ -625,9 +625,23 @@ EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, cons
     return end.lowest_wall_m >= lowest_wall_m - params.min_step_m &&
            end.highest_wall_m <= highest_wall_m + params.min_step_m;
   };
+  // Beside an edge kept as walls, a wall of another height at an end that
+  // the camera sees (a step up is one), with the face clear just inside
+  // it, is another neighbour standing beside the corner, not something
+  // lying across it: a wall seen face-on hides nothing behind it, and what
+  // lies across the corner shows inside the edge too. (Seen walls read as
+  // the height the profile meets them at, which differs along an edge by
+  // more than min_step_m.) Beside an edge that drops, such a wall still
+  // counts: there it let two faces of an unorganised pile through complete
+  // that were not.
+  const bool walled_edge = !std::isnan(lowest_wall_m);
+  const auto standsBesideTheCorner = [&](const EdgeEvidence& end) {
+    return walled_edge && end.inside_above_fraction <= kMaxInsideAboveFraction;
+  };
   const auto nearerOver = [&](const EdgeEvidence& end) {
     return end.kind == EdgeKind::kOcclusion ||
-           ((end.kind == EdgeKind::kStepUp || end.kind == EdgeKind::kDropBesideWall) && !oneOfTheWalls(end));
+           ((end.kind == EdgeKind::kStepUp || end.kind == EdgeKind::kDropBesideWall) && !oneOfTheWalls(end) &&
+            !standsBesideTheCorner(end));
   };
   if (nearerOver(judgeSpan(frame, plane, a_px, a_px + end_length, outward, params)) ||
       nearerOver(judgeSpan(frame, plane, b_px - end_length, b_px, outward, params)))
