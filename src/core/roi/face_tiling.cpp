@@ -1047,7 +1047,8 @@ private:
   /// and ends are added once, and the tiling goes on from them. Only then:
   /// from the start, their anchors would also compete where the quad's own
   /// serve, and change tilings that were right. A line counts from
-  /// kAnchorBand cells of the region on (a stray cell of noise is no side).
+  /// kAnchorBand cells of the region on (a stray cell of noise is no side);
+  /// one within the tolerance of the grid's own side adds nothing new.
   void addExtentLines()
   {
     auto extent = [&](bool along_s, std::set<int>& lines) {
