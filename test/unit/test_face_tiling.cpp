@@ -17,7 +17,7 @@
 #include "brick_pose/sim/d415_modes.h"
 #include "brick_pose/sim/scene_generator.h"
 #include "brick_pose/sim/synthetic_rig.h"
-#include "pallet_bench_frame.h"
+#include "bench_frame.h"
 #include "synthetic_plate_scene.h"
 #include "touching_plates_scene.h"
 
@@ -301,23 +301,10 @@ TEST(FaceTiling, ColourFreeGreenSizedFaceWithAFaintLineWhereTwoRedsWouldMeetIsPa
 /// (seed, lighting, the ground given as support, as the benchmark sets them).
 FrontEndResult touchingRowsBenchFrame(int frame, const std::string& resolution, std::size_t expected_bricks)
 {
-  const BrickCatalogue catalogue = BrickCatalogue::mbzirc2020();
-  const std::uint64_t seed = 1000003ULL + 4000000ULL + static_cast<std::uint64_t>(frame - 100);
-  const sim::Scene scene =
-      sim::SceneGenerator(catalogue, sim::SceneParams::defaultsFor(sim::SceneKind::kTouchingRows)).generate(seed);
-  EXPECT_EQ(scene.bricks.size(), expected_bricks);
-  sim::SensorModel sensor = sim::SensorModel::d4xx();
-  const sim::Lighting lightings[3] = {sim::Lighting::kNormal, sim::Lighting::kSunlight, sim::Lighting::kLowLight};
-  sensor.lighting = lightings[(frame - 100) % 3];
-  const PinholeCamera camera = sim::d415ColourMode(resolution);
-  const sim::SyntheticFrame rendered = sim::SyntheticRig(camera, sensor).render(scene, seed);
-  FrontEndParams params;
-  params.mode = SegmentationMode::kColourFree;
-  const Eigen::Vector3d up = scene.world_T_camera.linear().transpose() * Eigen::Vector3d::UnitZ();
-  params.roi.up_direction = up;
-  params.roi.support_plane = Eigen::Vector4d(up.x(), up.y(), up.z(), scene.world_T_camera.translation().z());
-  return FrontEnd(catalogue, params)
-      .process(makeRgbdFrame(rendered.rgb, rendered.depth_mm, camera, FrameHeader{1, "camera"}));
+  const test::BenchFrameRun run =
+      test::runBenchFrame(BrickCatalogue::mbzirc2020(), test::kTouchingRowsClass, frame, resolution);
+  EXPECT_EQ(run.scene.bricks.size(), expected_bricks);
+  return run.result;
 }
 
 TEST(FaceTiling, ALineTooCloseToAnEdgeForABrickBeyondItIsNoEdge)

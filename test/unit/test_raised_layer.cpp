@@ -10,7 +10,7 @@
 #include "brick_pose/roi/raised_layer.h"
 #include "brick_pose/segmentation/segment.h"
 #include "brick_pose/sim/d415_modes.h"
-#include "pallet_bench_frame.h"
+#include "bench_frame.h"
 #include "touching_plates_scene.h"
 
 namespace brick_pose
