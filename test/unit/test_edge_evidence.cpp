@@ -1,5 +1,6 @@
 // Edge evidence: what lies beyond a face's edge, on synthetic depth/colour
 // profiles with the noise of a real sensor.
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -183,6 +184,36 @@ TEST(EdgeEvidence, NearerSurfaceAlongAWallTheCameraSeesIsAStepUp)
                          Eigen::Vector2d(1.0, 0.0), strict)
                 .kind,
             EdgeKind::kStepUp);
+}
+
+/// Beyond the edge at `edge_u` a wall 0.15 m tall whose foot the stereo
+/// matching window smooths over 16 px: its depth rises from 2 px out as a
+/// smooth step; rows from `first_row_v` down (the face's plane goes on
+/// above them).
+RgbdFrame smoothedWallBeyond(double edge_u, int first_row_v = 0)
+{
+  return makeFrame(
+      [edge_u, first_row_v](int u, int v) {
+        if (v < first_row_v) return kFaceDepthM;
+        const double x = std::clamp((u - edge_u - 2.0) / 16.0, 0.0, 1.0);
+        return kFaceDepthM - 0.15 * x * x * (3.0 - 2.0 * x);
+      },
+      plainGrey);
+}
+
+TEST(EdgeEvidence, AWallWhoseFootTheStereoWindowSmoothsIsAStepUp)
+{
+  // With the step at 25 mm (a plane fitted with 6 mm rms, as on pallet
+  // layers at 640x480), the band just beyond the edge (3-8 px) reads the
+  // wall's foot: its median, 23 mm, is under the step. Its outer half
+  // stands 35 mm up. Pallet frame 145 had three box_small tops beside a box_large
+  // read so, as occlusions along the stretches where the wall read under the step.
+  constexpr double kFaceRmsM = 0.00625;
+  EXPECT_EQ(classify(smoothedWallBeyond(kEdgeU), kEdgeU, kFaceRmsM), EdgeKind::kStepUp);
+  EXPECT_EQ(classify(smoothedWallBeyond(220.0), 220.0, kFaceRmsM), EdgeKind::kStepUp);
+  // Beside half the edge only, the edge is no step up: the face's plane
+  // going on beyond the other half leaves it no real edge.
+  EXPECT_FALSE(isRealEdge(classify(smoothedWallBeyond(kEdgeU, 120), kEdgeU, kFaceRmsM)));
 }
 
 /// A step down along most of the edge at `edge_u`, a surface 0.15 m nearer

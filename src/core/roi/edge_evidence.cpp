@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "brick_pose/common/errors.h"
@@ -353,6 +354,21 @@ EdgeEvidence dropBesideWall(const ProfileLine& line, const std::vector<double>& 
   return occluded;
 }
 
+/// The height of the wall a stretch stands beside, when it is a wall all
+/// along only once its `rising` rows (level by the near band's median,
+/// above the step by its outer half) count as wall rows, and the wall would
+/// hide none of the face: the median of `wall_values` (each row's outside,
+/// rising rows' read by the outer half).
+std::optional<double> risingWallM(const ProfileLine& line, int above, int rising, int rows,
+                                  std::vector<double> wall_values, const EdgeEvidenceParams& params)
+{
+  const auto allAlong = [rows](int wall_rows) { return wall_rows > 0 && wall_rows * 4 >= 3 * rows; };
+  if (rising == 0 || allAlong(above) || !allAlong(above + rising)) return std::nullopt;
+  const double wall_m = upperMedianInPlace(wall_values);
+  if (!(hiddenByWallM(line, wall_m) <= params.max_hidden_by_wall_m)) return std::nullopt;
+  return wall_m;
+}
+
 /// Judges one stretch of an edge from its profile.
 EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, double step_m,
                           const EdgeEvidenceParams& params)
@@ -360,11 +376,15 @@ EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, doubl
   EdgeEvidence evidence;
   const int first_outside = params.inner_gap_px + 1;
   int border = 0, above = 0, below = 0, coplanar = 0, missing = 0;
-  std::vector<double> outside_values, sample_values;
+  // Level rows whose outer half of the near band stands above the step
+  // (see risingWallM), and each row's outside read so.
+  int rising = 0;
+  std::vector<double> outside_values, sample_values, outer_values, wall_values;
   for (int row = 0; row < profile.rows; ++row)
   {
     int in_image = 0;
     sample_values.clear();
+    outer_values.clear();
     // The near band decides; the far one only stands in where the near one
     // has no depth (a stereo shadow beyond a step).
     for (int offset = first_outside; offset <= profile.max_offset; ++offset)
@@ -375,7 +395,9 @@ EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, doubl
       const bool near_band = offset <= params.probe_px;
       if (!near_band && sample_values.size() >= 2) continue;
       const float offset_m = profileOffsetM(profile, line, row, offset);
-      if (!std::isnan(offset_m)) sample_values.push_back(offset_m);
+      if (std::isnan(offset_m)) continue;
+      sample_values.push_back(offset_m);
+      if (near_band && 2 * offset > params.probe_px) outer_values.push_back(offset_m);
     }
     // The edge itself on (or next to) the border counts as cut too.
     if (in_image < 3 || !profile.in_image[profile.at(row, 0)])
@@ -395,6 +417,10 @@ EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, doubl
     }
     const double outside = upperMedianInPlace(sample_values);
     outside_values.push_back(outside);
+    const double outer = outer_values.size() >= 2 ? upperMedianInPlace(outer_values) : outside;
+    const bool rises = std::abs(outside) <= step_m && outer > step_m;
+    wall_values.push_back(rises ? outer : outside);
+    rising += rises ? 1 : 0;
     if (outside > step_m) ++above;
     else if (outside < -step_m) ++below;
     else ++coplanar;
@@ -420,6 +446,20 @@ EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, doubl
   // face's edge onto a side face. (Above it is a cover lying across the
   // face; the outside band tells about that.)
   else if (inside < -step_m && inside > -params.max_overrun_m) evidence.kind = EdgeKind::kOverrun;
+  // A wall the camera sees whose foot the stereo matching window smooths:
+  // its depth rises across the near band from the edge, and the band's
+  // median reads under the step in rows where its outer half stands above
+  // it (pallet frame 145 at 640x480: three box_small tops beside a
+  // box_large). Read so, only a wall all along the stretch that would hide
+  // none of the face is taken (a step up); every other reading stays the
+  // band's median's.
+  else if (const std::optional<double> wall_m =
+               risingWallM(line, above, rising, with_depth + missing, wall_values, params))
+  {
+    evidence.kind = EdgeKind::kStepUp;
+    evidence.outside_offset_m = *wall_m;
+    evidence.lowest_wall_m = evidence.highest_wall_m = *wall_m;
+  }
   // A quarter of nearer samples is an occluder over part of the stretch;
   // nearer samples all along it, which as a wall standing upright on the
   // edge would hide almost none of the face, may be that wall: a taller
