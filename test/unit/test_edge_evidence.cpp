@@ -341,6 +341,32 @@ TEST(EdgeEvidence, AWallOverAWholeEdgeEndIsAnOcclusionUnlessItIsTheEdgesOwnStepU
             EdgeKind::kUnknown);
 }
 
+// Bench pallet-layer frame 142 (640x480): a flat box's edge beside a taller
+// box's wall ended at a corner where that wall ends and a box of the
+// flat's own height goes on: its end read half wall, half level, with
+// nothing dropping, and was taken for something lying across the corner.
+TEST(EdgeEvidence, AWallEndingBesideALevelNeighbourAtAnEndOfAWalledEdgeLeavesTheCornerClear)
+{
+  const auto depth = [](bool reaching_over) {
+    return [reaching_over](int u, int v) {
+      if (u < kEdgeU) return reaching_over && v < 37 && u > kEdgeU - 6 ? kFaceDepthM - 0.05 : kFaceDepthM;
+      return v < 37 ? kFaceDepthM - 0.15 : kFaceDepthM;  // the end next to corner 0 is v 30-44
+    };
+  };
+  const auto endsOf = [](const RgbdFrame& frame, double wall_m) {
+    return occlusionAtEdgeEnds(frame, facePlane(), Eigen::Vector2d(kEdgeU, 30.0), Eigen::Vector2d(kEdgeU, 210.0),
+                               Eigen::Vector2d(1.0, 0.0), EdgeEvidenceParams(), wall_m);
+  };
+  const RgbdFrame corner = makeFrame(depth(false), plainGrey);
+  // Beside an edge kept as walls, the wall the camera sees ending beside
+  // a level neighbour hides nothing of the face.
+  EXPECT_EQ(endsOf(corner, 0.15), EdgeKind::kUnknown);
+  // Beside an edge that is no wall, a nearer surface over part of its end
+  // is still taken for an occluder; so is one reaching over the face.
+  EXPECT_EQ(endsOf(corner, std::numeric_limits<double>::quiet_NaN()), EdgeKind::kOcclusion);
+  EXPECT_EQ(endsOf(makeFrame(depth(true), plainGrey), 0.15), EdgeKind::kOcclusion);
+}
+
 // Bench pallet-layer frame 141 (VGA): a row of flat boxes beside a wall of
 // taller ones. Along each flat's edge the wall read 0.158-0.161 m high, at
 // its ends 0.149 and 0.170 m (a seen wall reads as the height the profile

@@ -143,6 +143,11 @@ struct EdgeEvidence
   /// resting on the face); NaN otherwise.
   double lowest_wall_m = std::numeric_limits<double>::quiet_NaN();
   double highest_wall_m = std::numeric_limits<double>::quiet_NaN();
+  /// A kOcclusion stretch whose rows only rise to a wall the camera sees
+  /// (hiding none of the face) or stay on the face's plane, with none
+  /// dropping away and the face clear inside it: a neighbour's wall ending
+  /// beside one of the face's own height, as at a corner of a layer.
+  bool wall_beside_level = false;
 };
 
 /// Classifies the edge from `a_px` to `b_px` of a face lying on `plane`;

@@ -335,7 +335,9 @@ constexpr double kMaxInsideAboveFraction = 0.05;
 /// end falls inside it) is kDropBesideWall when the camera sees that wall
 /// and nothing rises inside the edge; otherwise, or with more level or
 /// unread rows than a rounded corner leaves, it is `occluded`, an
-/// occlusion.
+/// occlusion; one whose rows only rise to such a wall or stay level, with
+/// the face clear inside, is marked wall_beside_level (read at an edge's
+/// ends, see occlusionAtEdgeEnds).
 EdgeEvidence dropBesideWall(const ProfileLine& line, const std::vector<double>& outside_values, int below,
                             int rows, double step_m, const EdgeEvidenceParams& params, EdgeEvidence occluded)
 {
@@ -344,6 +346,8 @@ EdgeEvidence dropBesideWall(const ProfileLine& line, const std::vector<double>& 
   for (const double value : outside_values)
     if (value > step_m) wall.push_back(value);
   const int other = rows - below - static_cast<int>(wall.size());
+  if (below == 0 && !wall.empty() && occluded.inside_above_fraction <= kMaxInsideAboveFraction)
+    occluded.wall_beside_level = hiddenByWallM(line, upperMedianInPlace(wall)) <= params.max_hidden_by_wall_m;
   if (below == 0 || wall.empty() || other > kMaxUnsortedRowFraction * rows ||
       occluded.inside_above_fraction > kMaxInsideAboveFraction)
     return occluded;
@@ -678,10 +682,13 @@ EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, cons
   const auto standsBesideTheCorner = [&](const EdgeEvidence& end) {
     return walled_edge && end.inside_above_fraction <= kMaxInsideAboveFraction;
   };
+  // A wall the camera sees that ends at the corner beside a level
+  // neighbour (a layer's corner, where a taller box ends and one of the
+  // face's height goes on: pallet frame 142) stands beside it too.
   const auto nearerOver = [&](const EdgeEvidence& end) {
-    return end.kind == EdgeKind::kOcclusion ||
-           ((end.kind == EdgeKind::kStepUp || end.kind == EdgeKind::kDropBesideWall) && !oneOfTheWalls(end) &&
-            !standsBesideTheCorner(end));
+    if (end.kind == EdgeKind::kOcclusion) return !(end.wall_beside_level && standsBesideTheCorner(end));
+    return (end.kind == EdgeKind::kStepUp || end.kind == EdgeKind::kDropBesideWall) && !oneOfTheWalls(end) &&
+           !standsBesideTheCorner(end);
   };
   if (nearerOver(judgeSpan(frame, plane, a_px, a_px + end_length, outward, params)) ||
       nearerOver(judgeSpan(frame, plane, b_px - end_length, b_px, outward, params)))
