@@ -345,26 +345,31 @@ TEST(EdgeEvidence, AWallOverAWholeEdgeEndIsAnOcclusionUnlessItIsTheEdgesOwnStepU
 // box's wall ended at a corner where that wall ends and a box of the
 // flat's own height goes on: its end read half wall, half level, with
 // nothing dropping, and was taken for something lying across the corner.
-TEST(EdgeEvidence, AWallEndingBesideALevelNeighbourAtAnEndOfAWalledEdgeLeavesTheCornerClear)
+// Frame 147: the same corner at the end of an edge along a neighbour of the
+// box's own height.
+TEST(EdgeEvidence, AWallEndingBesideALevelNeighbourAtAnEdgesEndLeavesTheCornerClear)
 {
-  const auto depth = [](bool reaching_over) {
-    return [reaching_over](int u, int v) {
-      if (u < kEdgeU) return reaching_over && v < 37 && u > kEdgeU - 6 ? kFaceDepthM - 0.05 : kFaceDepthM;
+  const auto depth = [](double edge_u, bool reaching_over) {
+    return [edge_u, reaching_over](int u, int v) {
+      if (u < edge_u) return reaching_over && v < 37 && u > edge_u - 6 ? kFaceDepthM - 0.05 : kFaceDepthM;
       return v < 37 ? kFaceDepthM - 0.15 : kFaceDepthM;  // the end next to corner 0 is v 30-44
     };
   };
-  const auto endsOf = [](const RgbdFrame& frame, double wall_m) {
-    return occlusionAtEdgeEnds(frame, facePlane(), Eigen::Vector2d(kEdgeU, 30.0), Eigen::Vector2d(kEdgeU, 210.0),
+  const auto endsOf = [](const RgbdFrame& frame, double edge_u, double wall_m) {
+    return occlusionAtEdgeEnds(frame, facePlane(), Eigen::Vector2d(edge_u, 30.0), Eigen::Vector2d(edge_u, 210.0),
                                Eigen::Vector2d(1.0, 0.0), EdgeEvidenceParams(), wall_m);
   };
-  const RgbdFrame corner = makeFrame(depth(false), plainGrey);
-  // Beside an edge kept as walls, the wall the camera sees ending beside
-  // a level neighbour hides nothing of the face.
-  EXPECT_EQ(endsOf(corner, 0.15), EdgeKind::kUnknown);
-  // Beside an edge that is no wall, a nearer surface over part of its end
-  // is still taken for an occluder; so is one reaching over the face.
-  EXPECT_EQ(endsOf(corner, std::numeric_limits<double>::quiet_NaN()), EdgeKind::kOcclusion);
-  EXPECT_EQ(endsOf(makeFrame(depth(true), plainGrey), 0.15), EdgeKind::kOcclusion);
+  constexpr double kNoWall = std::numeric_limits<double>::quiet_NaN();
+  // The wall the camera sees ending beside a level neighbour hides
+  // nothing of the face, beside an edge kept as walls or any other.
+  const RgbdFrame corner = makeFrame(depth(kEdgeU, false), plainGrey);
+  EXPECT_EQ(endsOf(corner, kEdgeU, 0.15), EdgeKind::kUnknown);
+  EXPECT_EQ(endsOf(corner, kEdgeU, kNoWall), EdgeKind::kUnknown);
+  // Something reaching over the face there is an occluder; so is a wall
+  // the camera looks over (left of the principal point, the wall would
+  // hide 3 cm of the face).
+  EXPECT_EQ(endsOf(makeFrame(depth(kEdgeU, true), plainGrey), kEdgeU, 0.15), EdgeKind::kOcclusion);
+  EXPECT_EQ(endsOf(makeFrame(depth(100.0, false), plainGrey), 100.0, kNoWall), EdgeKind::kOcclusion);
 }
 
 // Bench pallet-layer frame 141 (VGA): a row of flat boxes beside a wall of

@@ -172,6 +172,8 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
 /// that range (within min_step_m): then it is one of those walls. Beside
 /// such an edge, a wall of another height the camera sees at an end, with
 /// the face clear just inside it, is a neighbour beside the corner: kUnknown.
+/// So is, beside any edge, an end that only rises to a wall the camera sees
+/// or stays level (EdgeEvidence::wall_beside_level).
 EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
                              const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
                              const EdgeEvidenceParams& params = EdgeEvidenceParams(),

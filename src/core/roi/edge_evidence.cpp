@@ -684,9 +684,11 @@ EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, cons
   };
   // A wall the camera sees that ends at the corner beside a level
   // neighbour (a layer's corner, where a taller box ends and one of the
-  // face's height goes on: pallet frame 142) stands beside it too.
+  // face's height goes on: pallet frames 142 and 147) is no nearer surface
+  // over the corner either, beside any edge: none of its rows drops away,
+  // and the face is clear inside it.
   const auto nearerOver = [&](const EdgeEvidence& end) {
-    if (end.kind == EdgeKind::kOcclusion) return !(end.wall_beside_level && standsBesideTheCorner(end));
+    if (end.kind == EdgeKind::kOcclusion) return !end.wall_beside_level;
     return (end.kind == EdgeKind::kStepUp || end.kind == EdgeKind::kDropBesideWall) && !oneOfTheWalls(end) &&
            !standsBesideTheCorner(end);
   };
