@@ -335,9 +335,9 @@ constexpr double kMaxInsideAboveFraction = 0.05;
 /// end falls inside it) is kDropBesideWall when the camera sees that wall
 /// and nothing rises inside the edge; otherwise, or with more level or
 /// unread rows than a rounded corner leaves, it is `occluded`, an
-/// occlusion; one whose rows only rise to such a wall or stay level, with
-/// the face clear inside, is marked wall_beside_level (read at an edge's
-/// ends, see occlusionAtEdgeEnds).
+/// occlusion; one with no row dropping away, whose wall the camera sees and
+/// with the face clear inside, is marked wall_beside_level (its other rows
+/// level or without depth; read at an edge's ends, see occlusionAtEdgeEnds).
 EdgeEvidence dropBesideWall(const ProfileLine& line, const std::vector<double>& outside_values, int below,
                             int rows, double step_m, const EdgeEvidenceParams& params, EdgeEvidence occluded)
 {
@@ -358,6 +358,10 @@ EdgeEvidence dropBesideWall(const ProfileLine& line, const std::vector<double>& 
   return occluded;
 }
 
+/// Whether `wall_rows` of a stretch's `rows` (those with depth or none
+/// beyond the edge) make a wall all along it: three quarters of them.
+bool wallAllAlong(int wall_rows, int rows) { return wall_rows > 0 && wall_rows * 4 >= 3 * rows; }
+
 /// The height of the wall a stretch stands beside, when it is a wall all
 /// along only once its `rising` rows (level by the near band's median,
 /// above the step by its outer half) count as wall rows, and the wall would
@@ -366,8 +370,7 @@ EdgeEvidence dropBesideWall(const ProfileLine& line, const std::vector<double>& 
 std::optional<double> risingWallM(const ProfileLine& line, int above, int rising, int rows,
                                   std::vector<double> wall_values, const EdgeEvidenceParams& params)
 {
-  const auto allAlong = [rows](int wall_rows) { return wall_rows > 0 && wall_rows * 4 >= 3 * rows; };
-  if (rising == 0 || allAlong(above) || !allAlong(above + rising)) return std::nullopt;
+  if (rising == 0 || wallAllAlong(above, rows) || !wallAllAlong(above + rising, rows)) return std::nullopt;
   const double wall_m = upperMedianInPlace(wall_values);
   if (!(hiddenByWallM(line, wall_m) <= params.max_hidden_by_wall_m)) return std::nullopt;
   return wall_m;
@@ -421,10 +424,16 @@ EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, doubl
     }
     const double outside = upperMedianInPlace(sample_values);
     outside_values.push_back(outside);
-    const double outer = outer_values.size() >= 2 ? upperMedianInPlace(outer_values) : outside;
-    const bool rises = std::abs(outside) <= step_m && outer > step_m;
-    wall_values.push_back(rises ? outer : outside);
-    rising += rises ? 1 : 0;
+    // (The outer half's median only for level rows: the others read as
+    // the band's median in every judgement.)
+    double wall_reading_m = outside;
+    if (std::abs(outside) <= step_m && outer_values.size() >= 2)
+      if (const double outer = upperMedianInPlace(outer_values); outer > step_m)
+      {
+        wall_reading_m = outer;
+        ++rising;
+      }
+    wall_values.push_back(wall_reading_m);
     if (outside > step_m) ++above;
     else if (outside < -step_m) ++below;
     else ++coplanar;
@@ -470,8 +479,7 @@ EdgeEvidence judgeStretch(const Profile& profile, const ProfileLine& line, doubl
   // neighbour or something resting on the face (only its height tells).
   else if (above * 4 >= with_depth + missing && above > 0)
   {
-    const bool all_along = above * 4 >= 3 * (with_depth + missing);
-    if (all_along)
+    if (wallAllAlong(above, with_depth + missing))
     {
       evidence.kind = hiddenByWallM(line, evidence.outside_offset_m) <= params.max_hidden_by_wall_m
                           ? EdgeKind::kStepUp
