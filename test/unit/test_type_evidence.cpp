@@ -45,11 +45,64 @@ TEST(TypeEvidence, OneTopTwoHeightsIsADoubtUntilASideReachesTheSupport)
   EXPECT_TRUE(typeDoubt(rivals, kSmall, 0.30, 0.20, {side(0.15, true)}).empty());
   EXPECT_EQ(closestType(rivals, 0.30, 0.20, {side(0.07, true)}), &kFlat);
   EXPECT_TRUE(typeDoubt(rivals, kFlat, 0.30, 0.20, {side(0.07, true)}).empty());
-  // A side ending 0.10 m down on a lower box is a lower bound: taller than
-  // the flat box, so it is out; the small one stays certain.
-  EXPECT_TRUE(typeDoubt(rivals, kSmall, 0.30, 0.20, {side(0.10, false)}).empty());
-  // Ending 0.05 m down on a lower box rules nothing out.
-  EXPECT_FALSE(typeDoubt(rivals, kSmall, 0.30, 0.20, {side(0.05, false)}).empty());
+  // A side ending 0.10 m down on something above the support is taller
+  // than the flat box: its side and, flush below it, that of a box it
+  // stands on. Only a flat box that could stand on nothing but the support
+  // is out; the small one is then certain.
+  EXPECT_FALSE(typeDoubt(rivals, kSmall, 0.30, 0.20, {side(0.10, false)}).empty());
+  EXPECT_TRUE(typeDoubt(rivals, kSmall, 0.30, 0.20, {side(0.10, false)}, SideFaceParams(), {&kFlat}).empty());
+  // Ending 0.05 m down rules nothing out.
+  EXPECT_FALSE(typeDoubt(rivals, kSmall, 0.30, 0.20, {side(0.05, false)}, SideFaceParams(), {&kFlat}).empty());
+}
+
+TEST(TypeEvidence, ATypeStandsOnTheSupportAloneWhenNothingFitsBeneathIt)
+{
+  const double tolerance_m = 0.025;
+  // A top 0.07 m up: a flat box on the support; a top 0.15 m up: a tall box
+  // on it, or a flat box on something 0.08 m high.
+  EXPECT_TRUE(standsOnSupportAlone(kFlat, 0.07, {}, tolerance_m));
+  EXPECT_TRUE(standsOnSupportAlone(kSmall, 0.15, {}, tolerance_m));
+  EXPECT_FALSE(standsOnSupportAlone(kFlat, 0.15, {}, tolerance_m));
+  // A level seen 0.01 m up around the foot (a mat) may be under it.
+  EXPECT_FALSE(standsOnSupportAlone(kSmall, 0.16, {0.01}, tolerance_m));
+  EXPECT_TRUE(standsOnSupportAlone(kSmall, 0.15, {0.08}, tolerance_m));
+}
+
+TEST(TypeEvidence, ASideEndingAboveTheSupportIsALowerBoundNotTheHeight)
+{
+  const std::vector<const BrickType*> fitting{&kSmall, &kFlat};
+  // A tall box beside a lower one shows only part of its side, down to the
+  // lower top (3 cm of it on the rig's pallet frame 136): nearer the flat
+  // box's 0.07 than the tall one's 0.15, but either could show it. Neither
+  // is favoured: the first listed stays the guess.
+  EXPECT_EQ(closestType(fitting, 0.30, 0.20, {side(0.03, false)}), &kSmall);
+  EXPECT_EQ(closestType({&kFlat, &kSmall}, 0.30, 0.20, {side(0.06, false)}), &kFlat);
+  // Taller than a type, it counts against that type (a tall box beside a
+  // flat one shows 0.08 m).
+  EXPECT_EQ(closestType({&kFlat, &kSmall}, 0.30, 0.20, {side(0.08, false)}), &kSmall);
+  // Down to the support, it is the height.
+  EXPECT_EQ(closestType(fitting, 0.30, 0.20, {side(0.08, true)}), &kFlat);
+}
+
+TEST(TypeEvidence, AmongEqualFitsTheTypeStandingExactlyAtTheFacesHeightWins)
+{
+  const StackHeights stacks = StackHeights::of({kSmall, kFlat});
+  // 0.15 m above the support: a tall box on it (exact), or a flat box on
+  // another (0.14 m, 1 cm off).
+  EXPECT_NEAR(standingMisfitM(kSmall, 0.15, {}, stacks), 0.0, 1e-9);
+  EXPECT_NEAR(standingMisfitM(kFlat, 0.15, {}, stacks), 0.01, 1e-3);
+  const std::vector<const BrickType*> flat_first{&kFlat, &kSmall};
+  EXPECT_EQ(closestType(flat_first, 0.30, 0.20, {},
+                        {standingMisfitM(kFlat, 0.15, {}, stacks), standingMisfitM(kSmall, 0.15, {}, stacks)}),
+            &kSmall);
+  // 0.07 m up only a flat box stands; below the support nothing does, by
+  // how far it would sink.
+  EXPECT_NEAR(standingMisfitM(kFlat, 0.07, {}, stacks), 0.0, 1e-9);
+  EXPECT_NEAR(standingMisfitM(kSmall, 0.07, {}, stacks), 0.08, 1e-9);
+  // A level seen around the foot (a plinth 0.08 m high) is a place to stand.
+  EXPECT_NEAR(standingMisfitM(kFlat, 0.15, {0.08}, stacks), 0.0, 1e-3);
+  // A side's misfit and the standing misfit add up.
+  EXPECT_EQ(closestType(flat_first, 0.30, 0.20, {side(0.15, true)}, {0.0, 0.01}), &kSmall);
 }
 
 TEST(TypeEvidence, NearlyEqualFitsLeaveADoubtAndClearOnesDoNot)
@@ -116,6 +169,10 @@ TEST(StackHeights, AnyNumberOfItemsInAnyOrderMakeAHeight)
   EXPECT_TRUE(stacks.canMake(-0.01, 0.02));
   EXPECT_FALSE(stacks.canMake(std::nan(""), 0.02));
   EXPECT_TRUE(StackHeights({0.07}, 1.0).canMake(5.0, 0.01)) << "beyond the heights it knows, anything may be";
+  EXPECT_NEAR(stacks.misfitM(0.10), 0.03, 1e-9) << "0.07 is the nearest stack";
+  EXPECT_NEAR(stacks.misfitM(0.2205), 0.0005, 1e-9);
+  EXPECT_NEAR(stacks.misfitM(-0.02), 0.02, 1e-9) << "below the support";
+  EXPECT_EQ(StackHeights({0.07}, 1.0).misfitM(5.0), 0.0);
 }
 
 TEST(StackHeights, ABoxLyingOnASideOrStandingOnAnEndStacksToo)

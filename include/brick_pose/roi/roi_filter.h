@@ -236,11 +236,11 @@ private:
                                                const BrickCandidate& candidate,
                                                const std::vector<const BrickType*>& shown) const;
   /// Narrows a colour-free face's types (`fitting`) and their rivals to
-  /// those that could stand at the face's height above the supporting
-  /// plane (see height_above_support_tolerance_m); unchanged without a
-  /// support, or when the height rules out all or none.
-  void keepTypesStandingThere(const RgbdFrame& frame, const FrameContext& context, const BrickCandidate& candidate,
-                              std::vector<const BrickType*>& fitting, std::vector<const BrickType*>& rivals) const;
+  /// those that could stand at `height` (its standingHeight; see
+  /// height_above_support_tolerance_m); unchanged without one, or when the
+  /// height rules out all or none.
+  void keepTypesStandingThere(const std::optional<StandingHeight>& height, std::vector<const BrickType*>& fitting,
+                              std::vector<const BrickType*>& rivals) const;
   /// Colour-free: a complete face whose top smaller catalogue tops also
   /// make up (two box_small side by side are a box_large) is one brick only
   /// where the seam between them would show, as a line on a `plain` face,

@@ -25,11 +25,18 @@ constexpr double kTypeMarginM = 0.015;
 bool showsTop(const BrickType& type, double length_m, double width_m, double tolerance_m);
 
 /// The type in `fitting` closest to a face of `length_m` x `width_m` and,
-/// where sides are seen to their foot, to their height. Sides reaching the
-/// supporting plane are the surest; without one, a side ending on another
-/// level surface (a box it stands on) still tells. Null for no types.
+/// where sides are seen to their foot, to their height. A side reaching the
+/// supporting plane measures the height. A side ending on anything else is
+/// only a lower bound: the level at its foot may be a box the face stands
+/// on, or a lower neighbour beside it, hiding the rest of the side (a box
+/// 0.15 m tall beside one 0.07 m tall shows 0.08 m); a type shorter than it
+/// fits worse by the difference, a taller one no worse. Where given,
+/// `standing_misfits_m[i]` (see standingMisfitM) adds how far `fitting[i]`
+/// could not stand at the face's height: among types the rest leaves level,
+/// the one standing exactly where the face is wins. Null for no types.
 const BrickType* closestType(const std::vector<const BrickType*>& fitting, double length_m, double width_m,
-                             std::vector<SideFaceEvidence> sides);
+                             const std::vector<SideFaceEvidence>& sides,
+                             const std::vector<double>& standing_misfits_m = {});
 
 /// The faces of `types` other than their tops that differ from the top by
 /// kTypeMarginM or more, each as a type whose "top" is that face, as tall as
@@ -41,13 +48,17 @@ std::vector<BrickType> lyingVariants(const std::vector<BrickType>& types);
 /// Why `best` is not certain: the rivals (other types, lying variants) that
 /// the evidence does not rule out, as "type uncertain: ..."; empty when it
 /// rules all out. A rival is ruled out when it fits the face's size and the
-/// sides reaching the support kTypeMarginM worse in all, or when a side
-/// ending on anything else (only a lower bound: a lower neighbour may hide
-/// the rest) is taller than it. Rivals within kTypeMarginM of `best` in every
+/// sides reaching the support kTypeMarginM worse in all. A side ending above
+/// the support is taller than a rival only where it goes on down past the
+/// rival's bottom, over what the rival stands on, flush with its side (a
+/// flat box on another shows one side twice its height): it rules out only
+/// the rivals of `on_support_alone`, which nothing could stand beneath (see
+/// standsOnSupportAlone). Rivals within kTypeMarginM of `best` in every
 /// dimension are the same shape: no doubt.
 std::string typeDoubt(const std::vector<const BrickType*>& rivals, const BrickType& best, double length_m,
                       double width_m, const std::vector<SideFaceEvidence>& sides,
-                      const SideFaceParams& params = SideFaceParams());
+                      const SideFaceParams& params = SideFaceParams(),
+                      const std::vector<const BrickType*>& on_support_alone = {});
 
 /// The heights a stack of catalogue items can make: any number of them, in
 /// any of the orientations they can lie in, one on another. A top `h` above
@@ -69,11 +80,26 @@ public:
   /// Whether some stack (none at all included) is within `tolerance_m` of
   /// `height_m`; above max_height_m every height is taken as makeable.
   bool canMake(double height_m, double tolerance_m) const;
+  /// How far `height_m` is from the nearest stack (m, to the grid's
+  /// resolution); 0 above max_height_m.
+  double misfitM(double height_m) const;
 
 private:
   double resolution_m_;
   std::vector<char> makeable_;  ///< by height / resolution_m_
 };
+
+/// How far `type`'s top would at best be from `height_above_support_m` (m):
+/// standing on the support, on one of `levels_m` or on a stack of items on
+/// either (0: it can stand exactly there).
+double standingMisfitM(const BrickType& type, double height_above_support_m, const std::vector<double>& levels_m,
+                       const StackHeights& stacks);
+
+/// Whether `type`, its top `height_above_support_m` up, can only be
+/// standing on the support itself: nothing an item or one of `levels_m`
+/// could be fits beneath it (within `tolerance_m`).
+bool standsOnSupportAlone(const BrickType& type, double height_above_support_m, const std::vector<double>& levels_m,
+                          double tolerance_m);
 
 /// The types of `rivals` (catalogue types and lying variants) that could
 /// show their top `height_above_support_m` above the supporting plane:

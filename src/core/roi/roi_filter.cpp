@@ -1098,7 +1098,11 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
       rivals.push_back(&variant);
       tallest_m = std::max(tallest_m, variant.height_m);
     }
-  keepTypesStandingThere(frame, context, candidate, fitting, rivals);
+  // Where the face stands (a support given) narrows its types and, among
+  // those left, favours the ones standing exactly at its height.
+  const std::optional<StandingHeight> standing =
+      rivals.size() > 1 ? standingHeight(frame, context, candidate, rivals) : std::nullopt;
+  keepTypesStandingThere(standing, fitting, rivals);
   // Several faces of nearly one size: the sides seen to their foot below
   // the face's real edges say how tall the box is.
   std::vector<SideFaceEvidence> sides;
@@ -1111,7 +1115,11 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
                             params_.sides);
         if (side.foot_seen) sides.push_back(side);
       }
-  const BrickType* best = closestType(fitting, candidate.length_m, candidate.width_m, sides);
+  std::vector<double> standing_misfits_m;
+  if (standing)
+    for (const BrickType* type : fitting)
+      standing_misfits_m.push_back(standingMisfitM(*type, standing->height_m, standing->levels_m, stack_heights_));
+  const BrickType* best = closestType(fitting, candidate.length_m, candidate.width_m, sides, standing_misfits_m);
   if (!best)
   {
     std::ostringstream text;
@@ -1120,7 +1128,14 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
     return text.str();
   }
   candidate.type_name = best->name;
-  candidate.type_doubt = typeDoubt(rivals, *best, candidate.length_m, candidate.width_m, sides, params_.sides);
+  std::vector<const BrickType*> on_support_alone;
+  if (standing)
+    for (const BrickType* rival : rivals)
+      if (standsOnSupportAlone(*rival, standing->height_m, standing->levels_m,
+                               params_.height_above_support_tolerance_m))
+        on_support_alone.push_back(rival);
+  candidate.type_doubt =
+      typeDoubt(rivals, *best, candidate.length_m, candidate.width_m, sides, params_.sides, on_support_alone);
   return std::nullopt;
 }
 
@@ -1197,14 +1212,11 @@ std::optional<RoiFilter::StandingHeight> RoiFilter::standingHeight(const RgbdFra
                                                    candidate.plane, context.up, tolerance_m)};
 }
 
-void RoiFilter::keepTypesStandingThere(const RgbdFrame& frame, const FrameContext& context,
-                                       const BrickCandidate& candidate,
+void RoiFilter::keepTypesStandingThere(const std::optional<StandingHeight>& height,
                                        std::vector<const BrickType*>& fitting,
                                        std::vector<const BrickType*>& rivals) const
 {
-  if (rivals.size() < 2) return;
-  const std::optional<StandingHeight> height = standingHeight(frame, context, candidate, rivals);
-  if (!height) return;
+  if (rivals.size() < 2 || !height) return;
   const std::vector<const BrickType*> standing = typesStandingAt(rivals, height->height_m, height->levels_m,
                                                                  stack_heights_,
                                                                  params_.height_above_support_tolerance_m);

@@ -26,10 +26,11 @@ double typeErrorM(const BrickType& type, double length_m, double width_m, const 
 }
 
 bool ruledOut(const BrickType& rival, const BrickType& best, double length_m, double width_m,
-              const std::vector<SideFaceEvidence>& sides, const SideFaceParams& params)
+              const std::vector<SideFaceEvidence>& sides, const SideFaceParams& params, bool rival_on_support_alone)
 {
   if (typeErrorM(rival, length_m, width_m, sides) - typeErrorM(best, length_m, width_m, sides) >= kTypeMarginM)
     return true;
+  if (!rival_on_support_alone) return false;
   return std::any_of(sides.begin(), sides.end(), [&](const SideFaceEvidence& side) {
     return !side.foot_on_support && judgeSideFace(side, rival.height_m, params) == SideFaceVerdict::kMismatch;
   });
@@ -50,20 +51,21 @@ bool showsTop(const BrickType& type, double length_m, double width_m, double tol
 }
 
 const BrickType* closestType(const std::vector<const BrickType*>& fitting, double length_m, double width_m,
-                             std::vector<SideFaceEvidence> sides)
+                             const std::vector<SideFaceEvidence>& sides, const std::vector<double>& standing_misfits_m)
 {
-  const bool any_on_support =
-      std::any_of(sides.begin(), sides.end(), [](const SideFaceEvidence& side) { return side.foot_on_support; });
   const BrickType* best = nullptr;
   double best_error_m = std::numeric_limits<double>::max();
-  for (const BrickType* type : fitting)
+  for (std::size_t i = 0; i < fitting.size(); ++i)
   {
-    double error_m = topErrorM(*type, length_m, width_m);
+    const BrickType& type = *fitting[i];
+    double error_m = topErrorM(type, length_m, width_m);
     for (const SideFaceEvidence& side : sides)
-      if (side.foot_on_support || !any_on_support) error_m += std::abs(side.visible_height_m - type->height_m);
+      error_m += side.foot_on_support ? std::abs(side.visible_height_m - type.height_m)
+                                      : std::max(0.0, side.visible_height_m - type.height_m);
+    if (i < standing_misfits_m.size()) error_m += standing_misfits_m[i];
     if (error_m < best_error_m)
     {
-      best = type;
+      best = &type;
       best_error_m = error_m;
     }
   }
@@ -94,12 +96,16 @@ std::vector<BrickType> lyingVariants(const std::vector<BrickType>& types)
 }
 
 std::string typeDoubt(const std::vector<const BrickType*>& rivals, const BrickType& best, double length_m,
-                      double width_m, const std::vector<SideFaceEvidence>& sides, const SideFaceParams& params)
+                      double width_m, const std::vector<SideFaceEvidence>& sides, const SideFaceParams& params,
+                      const std::vector<const BrickType*>& on_support_alone)
 {
   std::string others;
   for (const BrickType* type : rivals)
-    if (type != &best && !sameShape(*type, best) && !ruledOut(*type, best, length_m, width_m, sides, params))
+  {
+    const bool alone = std::find(on_support_alone.begin(), on_support_alone.end(), type) != on_support_alone.end();
+    if (type != &best && !sameShape(*type, best) && !ruledOut(*type, best, length_m, width_m, sides, params, alone))
       others += (others.empty() ? "" : ", ") + type->name;
+  }
   if (others.empty()) return {};
   return "type uncertain: the face fits " + best.name + " and " + others +
          ", and no side seen tells their heights apart";
@@ -141,6 +147,38 @@ bool StackHeights::canMake(double height_m, double tolerance_m) const
   for (long k = first; k <= last; ++k)
     if (makeable_[static_cast<std::size_t>(k)]) return true;
   return false;
+}
+
+double StackHeights::misfitM(double height_m) const
+{
+  if (!std::isfinite(height_m)) return std::numeric_limits<double>::infinity();
+  const long last = static_cast<long>(makeable_.size()) - 1;
+  if (height_m > static_cast<double>(last) * resolution_m_) return 0.0;
+  if (height_m <= 0.0) return -height_m;  // nothing below: the support itself
+  const long nearest = static_cast<long>(std::lround(height_m / resolution_m_));
+  for (long step = 0; step <= last; ++step)
+    for (const long k : {nearest - step, nearest + step})
+      if (k >= 0 && k <= last && makeable_[static_cast<std::size_t>(k)])
+        return std::abs(height_m - static_cast<double>(k) * resolution_m_);
+  return std::numeric_limits<double>::infinity();
+}
+
+double standingMisfitM(const BrickType& type, double height_above_support_m, const std::vector<double>& levels_m,
+                       const StackHeights& stacks)
+{
+  const double below_m = height_above_support_m - type.height_m;
+  double misfit_m = stacks.misfitM(below_m);
+  for (const double level_m : levels_m) misfit_m = std::min(misfit_m, stacks.misfitM(below_m - level_m));
+  return misfit_m;
+}
+
+bool standsOnSupportAlone(const BrickType& type, double height_above_support_m, const std::vector<double>& levels_m,
+                          double tolerance_m)
+{
+  const double below_m = height_above_support_m - type.height_m;
+  return below_m <= tolerance_m && std::all_of(levels_m.begin(), levels_m.end(), [&](double level_m) {
+           return level_m > below_m + tolerance_m;
+         });
 }
 
 std::vector<const BrickType*> typesStandingAt(const std::vector<const BrickType*>& rivals,
