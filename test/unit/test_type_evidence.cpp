@@ -84,23 +84,27 @@ TEST(TypeEvidence, ASideEndingAboveTheSupportIsALowerBoundNotTheHeight)
   EXPECT_EQ(closestType(fitting, 0.30, 0.20, {side(0.08, true)}), &kFlat);
 }
 
-TEST(TypeEvidence, AmongEqualFitsTheTypeStandingExactlyAtTheFacesHeightWins)
+TEST(TypeEvidence, AmongEqualFitsTheTypeStandingExactlyAtTheFacesHeightOnFewestItemsWins)
 {
   const StackHeights stacks = StackHeights::of({kSmall, kFlat});
-  // 0.15 m above the support: a tall box on it (exact), or a flat box on
-  // another (0.14 m, 1 cm off).
-  EXPECT_NEAR(standingMisfitM(kSmall, 0.15, {}, stacks), 0.0, 1e-9);
-  EXPECT_NEAR(standingMisfitM(kFlat, 0.15, {}, stacks), 0.01, 1e-3);
+  // 0.15 m above the support: a tall box on it (exact, nothing beneath), or
+  // a flat box on another (0.14 m: 1 cm off, one item beneath).
+  EXPECT_NEAR(standingMisfitM(kSmall, 0.15, stacks), 0.0, 1e-9);
+  EXPECT_NEAR(standingMisfitM(kFlat, 0.15, stacks), 0.01 + kStackItemPenaltyM, 1e-3);
   const std::vector<const BrickType*> flat_first{&kFlat, &kSmall};
   EXPECT_EQ(closestType(flat_first, 0.30, 0.20, {},
-                        {standingMisfitM(kFlat, 0.15, {}, stacks), standingMisfitM(kSmall, 0.15, {}, stacks)}),
+                        {standingMisfitM(kFlat, 0.15, stacks), standingMisfitM(kSmall, 0.15, stacks)}),
             &kSmall);
   // 0.07 m up only a flat box stands; below the support nothing does, by
   // how far it would sink.
-  EXPECT_NEAR(standingMisfitM(kFlat, 0.07, {}, stacks), 0.0, 1e-9);
-  EXPECT_NEAR(standingMisfitM(kSmall, 0.07, {}, stacks), 0.08, 1e-9);
-  // A level seen around the foot (a plinth 0.08 m high) is a place to stand.
-  EXPECT_NEAR(standingMisfitM(kFlat, 0.15, {0.08}, stacks), 0.0, 1e-3);
+  EXPECT_NEAR(standingMisfitM(kFlat, 0.07, stacks), 0.0, 1e-9);
+  EXPECT_NEAR(standingMisfitM(kSmall, 0.07, stacks), 0.08, 1e-9);
+  // High up, almost any height is some stack's: a top 0.549 m up is a tall
+  // box on a large one standing on an end (0.40 m, one item), or a flat box
+  // on a large one and a flat one (0.47 m, 9 mm off) or on five items (0.20
+  // + 4 x 0.07, exact). The fewest items win.
+  const StackHeights boxes = StackHeights::of({box("box_large", 0.40, 0.30, 0.25), kSmall, kFlat});
+  EXPECT_LT(standingMisfitM(kSmall, 0.549, boxes), standingMisfitM(kFlat, 0.549, boxes));
   // A side's misfit and the standing misfit add up.
   EXPECT_EQ(closestType(flat_first, 0.30, 0.20, {side(0.15, true)}, {0.0, 0.01}), &kSmall);
 }
@@ -171,6 +175,8 @@ TEST(StackHeights, AnyNumberOfItemsInAnyOrderMakeAHeight)
   EXPECT_TRUE(StackHeights({0.07}, 1.0).canMake(5.0, 0.01)) << "beyond the heights it knows, anything may be";
   EXPECT_NEAR(stacks.misfitM(0.10), 0.03, 1e-9) << "0.07 is the nearest stack";
   EXPECT_NEAR(stacks.misfitM(0.2205), 0.0005, 1e-9);
+  EXPECT_NEAR(stacks.misfitM(0.2205, 0.01), 0.0205, 1e-9) << "two items";
+  EXPECT_NEAR(stacks.misfitM(0.145, 0.01), 0.015, 1e-9) << "one item 5 mm off beats two 5 mm off";
   EXPECT_NEAR(stacks.misfitM(-0.02), 0.02, 1e-9) << "below the support";
   EXPECT_EQ(StackHeights({0.07}, 1.0).misfitM(5.0), 0.0);
 }

@@ -6,6 +6,7 @@
 // near another type's top; the closest type is then a guess, and a guess is
 // never published as a complete top.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -80,20 +81,32 @@ public:
   /// Whether some stack (none at all included) is within `tolerance_m` of
   /// `height_m`; above max_height_m every height is taken as makeable.
   bool canMake(double height_m, double tolerance_m) const;
-  /// How far `height_m` is from the nearest stack (m, to the grid's
-  /// resolution); 0 above max_height_m.
-  double misfitM(double height_m) const;
+  /// How far `height_m` is from a stack (m, to the grid's resolution),
+  /// each item of it adding `per_item_m`: the least such sum; 0 above
+  /// max_height_m.
+  double misfitM(double height_m, double per_item_m = 0.0) const;
 
 private:
+  static constexpr std::uint8_t kUnmakeable = 255;
   double resolution_m_;
-  std::vector<char> makeable_;  ///< by height / resolution_m_
+  std::vector<std::uint8_t> items_;  ///< fewest items making each height / resolution_m_, or kUnmakeable
 };
 
-/// How far `type`'s top would at best be from `height_above_support_m` (m):
-/// standing on the support, on one of `levels_m` or on a stack of items on
-/// either (0: it can stand exactly there).
-double standingMisfitM(const BrickType& type, double height_above_support_m, const std::vector<double>& levels_m,
-                       const StackHeights& stacks);
+/// What each item beneath a face adds to the misfit of the type standing
+/// on them (m): of two ways to stand at a height, nearly as exact, the one
+/// of fewer items is the likelier. Without it, any height above a few
+/// items is some stack's to the millimetre (a box_small's top 0.55 m up is
+/// also a box_flat's on five items), and the guess between types sharing a
+/// top would follow noise.
+constexpr double kStackItemPenaltyM = 0.01;
+
+/// How far `type`'s top would at best be from `height_above_support_m` (m)
+/// standing on the support or on a stack of items on it, with
+/// kStackItemPenaltyM for each item (0: standing exactly on the support).
+/// Levels seen around a face's foot are left out: on an oblique view the
+/// box's own side face can read as one (the densest heights just below the
+/// top), and a level only ever widens the doubt (typesStandingAt).
+double standingMisfitM(const BrickType& type, double height_above_support_m, const StackHeights& stacks);
 
 /// Whether `type`, its top `height_above_support_m` up, can only be
 /// standing on the support itself: nothing an item or one of `levels_m`

@@ -1118,7 +1118,7 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
   std::vector<double> standing_misfits_m;
   if (standing)
     for (const BrickType* type : fitting)
-      standing_misfits_m.push_back(standingMisfitM(*type, standing->height_m, standing->levels_m, stack_heights_));
+      standing_misfits_m.push_back(standingMisfitM(*type, standing->height_m, stack_heights_));
   const BrickType* best = closestType(fitting, candidate.length_m, candidate.width_m, sides, standing_misfits_m);
   if (!best)
   {

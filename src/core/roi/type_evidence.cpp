@@ -112,20 +112,19 @@ std::string typeDoubt(const std::vector<const BrickType*>& rivals, const BrickTy
 }
 
 StackHeights::StackHeights(const std::vector<double>& item_heights_m, double max_height_m, double resolution_m)
-  : resolution_m_(resolution_m), makeable_(static_cast<std::size_t>(std::ceil(max_height_m / resolution_m)) + 1, 0)
+  : resolution_m_(resolution_m),
+    items_(static_cast<std::size_t>(std::ceil(max_height_m / resolution_m)) + 1, kUnmakeable)
 {
   std::vector<std::size_t> steps;
   for (const double height_m : item_heights_m)
     if (height_m > 0.0) steps.push_back(static_cast<std::size_t>(std::max(1.0, std::round(height_m / resolution_m))));
-  // Unbounded knapsack: a height is makeable when one item less is.
-  makeable_[0] = 1;
-  for (std::size_t k = 1; k < makeable_.size(); ++k)
+  // Unbounded knapsack, fewest items: a height takes one item more than
+  // the height one item less.
+  items_[0] = 0;
+  for (std::size_t k = 1; k < items_.size(); ++k)
     for (const std::size_t step : steps)
-      if (step <= k && makeable_[k - step])
-      {
-        makeable_[k] = 1;
-        break;
-      }
+      if (step <= k && items_[k - step] != kUnmakeable)
+        items_[k] = std::min<std::uint8_t>(items_[k], static_cast<std::uint8_t>(std::min(254, items_[k - step] + 1)));
 }
 
 StackHeights StackHeights::of(const std::vector<BrickType>& types)
@@ -139,37 +138,43 @@ StackHeights StackHeights::of(const std::vector<BrickType>& types)
 bool StackHeights::canMake(double height_m, double tolerance_m) const
 {
   if (!std::isfinite(height_m)) return false;
-  const double last_m = static_cast<double>(makeable_.size() - 1) * resolution_m_;
+  const double last_m = static_cast<double>(items_.size() - 1) * resolution_m_;
   if (height_m - tolerance_m > last_m) return true;
   const long first = std::max(0L, static_cast<long>(std::ceil((height_m - tolerance_m) / resolution_m_)));
-  const long last = std::min(static_cast<long>(makeable_.size()) - 1,
+  const long last = std::min(static_cast<long>(items_.size()) - 1,
                              static_cast<long>(std::floor((height_m + tolerance_m) / resolution_m_)));
   for (long k = first; k <= last; ++k)
-    if (makeable_[static_cast<std::size_t>(k)]) return true;
+    if (items_[static_cast<std::size_t>(k)] != kUnmakeable) return true;
   return false;
 }
 
-double StackHeights::misfitM(double height_m) const
+double StackHeights::misfitM(double height_m, double per_item_m) const
 {
   if (!std::isfinite(height_m)) return std::numeric_limits<double>::infinity();
-  const long last = static_cast<long>(makeable_.size()) - 1;
+  const long last = static_cast<long>(items_.size()) - 1;
   if (height_m > static_cast<double>(last) * resolution_m_) return 0.0;
   if (height_m <= 0.0) return -height_m;  // nothing below: the support itself
-  const long nearest = static_cast<long>(std::lround(height_m / resolution_m_));
+  // Outward from the nearest grid height, until the distance alone is
+  // no better than the best found.
+  const long nearest = std::clamp(static_cast<long>(std::lround(height_m / resolution_m_)), 0L, last);
+  double best_m = std::numeric_limits<double>::infinity();
   for (long step = 0; step <= last; ++step)
+  {
+    if (static_cast<double>(step - 1) * resolution_m_ >= best_m) break;
     for (const long k : {nearest - step, nearest + step})
-      if (k >= 0 && k <= last && makeable_[static_cast<std::size_t>(k)])
-        return std::abs(height_m - static_cast<double>(k) * resolution_m_);
-  return std::numeric_limits<double>::infinity();
+    {
+      if (k < 0 || k > last || items_[static_cast<std::size_t>(k)] == kUnmakeable) continue;
+      const double misfit_m =
+          std::abs(height_m - static_cast<double>(k) * resolution_m_) + per_item_m * items_[static_cast<std::size_t>(k)];
+      best_m = std::min(best_m, misfit_m);
+    }
+  }
+  return best_m;
 }
 
-double standingMisfitM(const BrickType& type, double height_above_support_m, const std::vector<double>& levels_m,
-                       const StackHeights& stacks)
+double standingMisfitM(const BrickType& type, double height_above_support_m, const StackHeights& stacks)
 {
-  const double below_m = height_above_support_m - type.height_m;
-  double misfit_m = stacks.misfitM(below_m);
-  for (const double level_m : levels_m) misfit_m = std::min(misfit_m, stacks.misfitM(below_m - level_m));
-  return misfit_m;
+  return stacks.misfitM(height_above_support_m - type.height_m, kStackItemPenaltyM);
 }
 
 bool standsOnSupportAlone(const BrickType& type, double height_above_support_m, const std::vector<double>& levels_m,
