@@ -95,21 +95,36 @@ SeamProbe probeSeamsAcross(const RgbdFrame& frame, const Segment& segment, const
   const cv::Rect& box = segment.bounding_box_px;
   // Read in the face's own colour, as the tiler's seam evidence is.
   const FaceGrey face_grey = faceGreyOf(frame, segment.mask, box);
+  // A pixel's ray r = (x, y, 1) meets the plane at (n.c / n.r) r, and its
+  // depth z lies z n.r - n.c off the plane: both need only n.r and axis.r,
+  // a row's term plus a column's (this loop reads every pixel of the face).
+  const Eigen::Vector3d& normal = face.plane.normal;
+  const double normal_dot_centroid = normal.dot(face.plane.centroid_m);
+  const double origin_along_m = origin_m.dot(axis) - margin_m;
+  const PinholeCamera& camera = frame.camera;
+  std::vector<double> x_of_col(static_cast<std::size_t>(segment.mask.cols));
+  for (int col = 0; col < segment.mask.cols; ++col) x_of_col[col] = (box.x + col - camera.cx_px) / camera.fx_px;
   for (int row = 0; row < segment.mask.rows; ++row)
   {
     const std::uint8_t* inside = segment.mask.ptr<std::uint8_t>(row);
     const int v = box.y + row;
+    const double y = (v - camera.cy_px) / camera.fy_px;
+    const double normal_row = normal.y() * y + normal.z(), axis_row = axis.y() * y + axis.z();
+    const cv::Vec3b* rgb_row = frame.rgb.ptr<cv::Vec3b>(v) + box.x;
+    const float* depth_row = frame.depth_m.ptr<float>(v) + box.x;
     for (int col = 0; col < segment.mask.cols; ++col)
     {
       if (!inside[col]) continue;
-      const int u = box.x + col;
-      Eigen::Vector3d on_plane_m;
-      if (!face.plane.intersectRay(frame.camera.ray(u, v), on_plane_m)) continue;
-      const int bin = static_cast<int>(std::floor(((on_plane_m - origin_m).dot(axis) + margin_m) / bin_m));
+      const double x = x_of_col[col];
+      const double normal_dot_ray = normal.x() * x + normal_row;
+      if (std::abs(normal_dot_ray) < 1e-9) continue;
+      const double scale = normal_dot_centroid / normal_dot_ray;
+      if (!(scale > 0.0)) continue;  // the ray meets the plane behind the camera
+      const int bin = static_cast<int>(std::floor((scale * (axis.x() * x + axis_row) - origin_along_m) / bin_m));
       if (bin < 0 || bin >= bins) continue;
-      grey.add(bin, face_grey(frame.rgb.ptr<cv::Vec3b>(v)[u]));
-      const float z = frame.depthAt(u, v);
-      if (!std::isnan(z)) offset.add(bin, face.plane.signedDistance(frame.camera.backProject(u, v, z)));
+      grey.add(bin, face_grey(rgb_row[col]));
+      const float z = depth_row[col];
+      if (!std::isnan(z)) offset.add(bin, z * normal_dot_ray - normal_dot_centroid);
     }
   }
   // Bins short of half the typical count (the face's ends, cut slantwise)
