@@ -74,8 +74,10 @@ TEST(TypeEvidence, ASideEndingAboveTheSupportIsALowerBoundNotTheHeight)
   // A tall box beside a lower one shows only part of its side, down to the
   // lower top (3 cm of it on the rig's pallet frame 136): nearer the flat
   // box's 0.07 than the tall one's 0.15, but either could show it. Neither
-  // is favoured: the first listed stays the guess.
+  // is favoured: the first listed stays the guess (read as the height, 3 cm
+  // made the flat box the guess).
   EXPECT_EQ(closestType(fitting, 0.30, 0.20, {side(0.03, false)}), &kSmall);
+  // (A tie keeps the order given.)
   EXPECT_EQ(closestType({&kFlat, &kSmall}, 0.30, 0.20, {side(0.06, false)}), &kFlat);
   // Taller than a type, it counts against that type (a tall box beside a
   // flat one shows 0.08 m).
@@ -100,9 +102,9 @@ TEST(TypeEvidence, AmongEqualFitsTheTypeStandingExactlyAtTheFacesHeightOnFewestI
   EXPECT_NEAR(standingMisfitM(kFlat, 0.07, stacks), 0.0, 1e-9);
   EXPECT_NEAR(standingMisfitM(kSmall, 0.07, stacks), 0.08, 1e-9);
   // High up, almost any height is some stack's: a top 0.549 m up is a tall
-  // box on a large one standing on an end (0.40 m, one item), or a flat box
-  // on a large one and a flat one (0.47 m, 9 mm off) or on five items (0.20
-  // + 4 x 0.07, exact). The fewest items win.
+  // box on a large one standing on an end (0.40 m, one item, 1 mm off), or
+  // a flat box on a large one and a flat one (0.47 m, two items, 9 mm off)
+  // or on five items (0.20 + 4 x 0.07, 1 mm off). The fewest items win.
   const StackHeights boxes = StackHeights::of({box("box_large", 0.40, 0.30, 0.25), kSmall, kFlat});
   EXPECT_LT(standingMisfitM(kSmall, 0.549, boxes), standingMisfitM(kFlat, 0.549, boxes));
   // A side's misfit and the standing misfit add up.
@@ -177,6 +179,8 @@ TEST(StackHeights, AnyNumberOfItemsInAnyOrderMakeAHeight)
   EXPECT_NEAR(stacks.misfitM(0.2205), 0.0005, 1e-9);
   EXPECT_NEAR(stacks.misfitM(0.2205, 0.01), 0.0205, 1e-9) << "two items";
   EXPECT_NEAR(stacks.misfitM(0.145, 0.01), 0.015, 1e-9) << "one item 5 mm off beats two 5 mm off";
+  EXPECT_NEAR(stacks.misfitM(0.142, 0.01), 0.018, 1e-9) << "one item 8 mm off beats two 2 mm off";
+  EXPECT_TRUE(std::isinf(stacks.misfitM(std::nan(""))));
   EXPECT_NEAR(stacks.misfitM(-0.02), 0.02, 1e-9) << "below the support";
   EXPECT_EQ(StackHeights({0.07}, 1.0).misfitM(5.0), 0.0);
 }

@@ -235,6 +235,10 @@ private:
   std::optional<StandingHeight> standingHeight(const RgbdFrame& frame, const FrameContext& context,
                                                const BrickCandidate& candidate,
                                                const std::vector<const BrickType*>& shown) const;
+  /// The side faces below the face's real edges (steps down, creases) seen
+  /// down to their foot, measured up to `tallest_m`.
+  std::vector<SideFaceEvidence> sidesSeenToTheirFoot(const RgbdFrame& frame, const FrameContext& context,
+                                                     const BrickCandidate& candidate, double tallest_m) const;
   /// Narrows a colour-free face's types (`fitting`) and their rivals to
   /// those that could stand at `height` (its standingHeight; see
   /// height_above_support_tolerance_m); unchanged without one, or when the

@@ -33,8 +33,8 @@ bool showsTop(const BrickType& type, double length_m, double width_m, double tol
 /// 0.15 m tall beside one 0.07 m tall shows 0.08 m); a type shorter than it
 /// fits worse by the difference, a taller one no worse. Where given,
 /// `standing_misfits_m[i]` (see standingMisfitM) adds how far `fitting[i]`
-/// could not stand at the face's height: among types the rest leaves level,
-/// the one standing exactly where the face is wins. Null for no types.
+/// could not stand at the face's height: among types otherwise tied, the
+/// one standing most exactly where the face is wins. Null for no types.
 const BrickType* closestType(const std::vector<const BrickType*>& fitting, double length_m, double width_m,
                              const std::vector<SideFaceEvidence>& sides,
                              const std::vector<double>& standing_misfits_m = {});
@@ -50,10 +50,10 @@ std::vector<BrickType> lyingVariants(const std::vector<BrickType>& types);
 /// the evidence does not rule out, as "type uncertain: ..."; empty when it
 /// rules all out. A rival is ruled out when it fits the face's size and the
 /// sides reaching the support kTypeMarginM worse in all. A side ending above
-/// the support is taller than a rival only where it goes on down past the
-/// rival's bottom, over what the rival stands on, flush with its side (a
-/// flat box on another shows one side twice its height): it rules out only
-/// the rivals of `on_support_alone`, which nothing could stand beneath (see
+/// the support and taller than a rival may be the rival's side and, flush
+/// below it, the side of what it stands on (a flat box on another shows one
+/// side twice its height): such a side rules out only the rivals of
+/// `on_support_alone`, beneath which nothing can be (see
 /// standsOnSupportAlone). Rivals within kTypeMarginM of `best` in every
 /// dimension are the same shape: no doubt.
 std::string typeDoubt(const std::vector<const BrickType*>& rivals, const BrickType& best, double length_m,
@@ -82,8 +82,8 @@ public:
   /// `height_m`; above max_height_m every height is taken as makeable.
   bool canMake(double height_m, double tolerance_m) const;
   /// How far `height_m` is from a stack (m, to the grid's resolution),
-  /// each item of it adding `per_item_m`: the least such sum; 0 above
-  /// max_height_m.
+  /// each item of it adding `per_item_m` (>= 0): the least such sum; 0
+  /// above max_height_m, infinite for a height that is not finite.
   double misfitM(double height_m, double per_item_m = 0.0) const;
 
 private:
@@ -107,12 +107,22 @@ constexpr double kStackItemPenaltyM = 0.01;
 /// box's own side face can read as one (the densest heights just below the
 /// top), and a level only ever widens the doubt (typesStandingAt).
 double standingMisfitM(const BrickType& type, double height_above_support_m, const StackHeights& stacks);
+/// standingMisfitM of each of `types`, in their order.
+std::vector<double> standingMisfitsM(const std::vector<const BrickType*>& types, double height_above_support_m,
+                                     const StackHeights& stacks);
 
 /// Whether `type`, its top `height_above_support_m` up, can only be
-/// standing on the support itself: nothing an item or one of `levels_m`
-/// could be fits beneath it (within `tolerance_m`).
+/// standing on the support itself: its bottom within `tolerance_m` of the
+/// support, too low for any item beneath (every catalogue item is taller
+/// than twice the tolerance) and below every one of `levels_m`. Also true
+/// of a type taller than the face's height, which could not stand there at
+/// all (typesStandingAt leaves it out).
 bool standsOnSupportAlone(const BrickType& type, double height_above_support_m, const std::vector<double>& levels_m,
                           double tolerance_m);
+/// The types of `rivals` that standsOnSupportAlone, in their order.
+std::vector<const BrickType*> typesOnSupportAlone(const std::vector<const BrickType*>& rivals,
+                                                  double height_above_support_m, const std::vector<double>& levels_m,
+                                                  double tolerance_m);
 
 /// The types of `rivals` (catalogue types and lying variants) that could
 /// show their top `height_above_support_m` above the supporting plane:

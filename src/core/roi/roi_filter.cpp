@@ -1105,20 +1105,10 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
   keepTypesStandingThere(standing, fitting, rivals);
   // Several faces of nearly one size: the sides seen to their foot below
   // the face's real edges say how tall the box is.
-  std::vector<SideFaceEvidence> sides;
-  if (rivals.size() > 1)
-    for (int k = 0; k < 4; ++k)
-      if (candidate.edge_kinds[k] == EdgeKind::kStepDown || candidate.edge_kinds[k] == EdgeKind::kCrease)
-      {
-        const SideFaceEvidence side =
-            measureSideFace(frame, candidate.corners_m, sideAxis(candidate, context), k, tallest_m, context.up,
-                            params_.sides);
-        if (side.foot_seen) sides.push_back(side);
-      }
-  std::vector<double> standing_misfits_m;
-  if (standing)
-    for (const BrickType* type : fitting)
-      standing_misfits_m.push_back(standingMisfitM(*type, standing->height_m, stack_heights_));
+  const std::vector<SideFaceEvidence> sides =
+      rivals.size() > 1 ? sidesSeenToTheirFoot(frame, context, candidate, tallest_m) : std::vector<SideFaceEvidence>();
+  const std::vector<double> standing_misfits_m =
+      standing ? standingMisfitsM(fitting, standing->height_m, stack_heights_) : std::vector<double>();
   const BrickType* best = closestType(fitting, candidate.length_m, candidate.width_m, sides, standing_misfits_m);
   if (!best)
   {
@@ -1128,15 +1118,28 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
     return text.str();
   }
   candidate.type_name = best->name;
-  std::vector<const BrickType*> on_support_alone;
-  if (standing)
-    for (const BrickType* rival : rivals)
-      if (standsOnSupportAlone(*rival, standing->height_m, standing->levels_m,
-                               params_.height_above_support_tolerance_m))
-        on_support_alone.push_back(rival);
+  const std::vector<const BrickType*> on_support_alone =
+      standing ? typesOnSupportAlone(rivals, standing->height_m, standing->levels_m,
+                                     params_.height_above_support_tolerance_m)
+               : std::vector<const BrickType*>();
   candidate.type_doubt =
       typeDoubt(rivals, *best, candidate.length_m, candidate.width_m, sides, params_.sides, on_support_alone);
   return std::nullopt;
+}
+
+std::vector<SideFaceEvidence> RoiFilter::sidesSeenToTheirFoot(const RgbdFrame& frame, const FrameContext& context,
+                                                               const BrickCandidate& candidate,
+                                                               double tallest_m) const
+{
+  std::vector<SideFaceEvidence> sides;
+  for (int k = 0; k < 4; ++k)
+    if (candidate.edge_kinds[k] == EdgeKind::kStepDown || candidate.edge_kinds[k] == EdgeKind::kCrease)
+    {
+      const SideFaceEvidence side = measureSideFace(frame, candidate.corners_m, sideAxis(candidate, context), k,
+                                                    tallest_m, context.up, params_.sides);
+      if (side.foot_seen) sides.push_back(side);
+    }
+  return sides;
 }
 
 void RoiFilter::endAtWalls(const RgbdFrame& frame, const FrameContext& context, BrickCandidate& candidate) const

@@ -109,18 +109,18 @@ SeamProbe probeSeamsAcross(const RgbdFrame& frame, const Segment& segment, const
     const std::uint8_t* inside = segment.mask.ptr<std::uint8_t>(row);
     const int v = box.y + row;
     const double y = (v - camera.cy_px) / camera.fy_px;
-    const double normal_row = normal.y() * y + normal.z(), axis_row = axis.y() * y + axis.z();
+    const double normal_dot_ray_row = normal.y() * y + normal.z(), axis_dot_ray_row = axis.y() * y + axis.z();
     const cv::Vec3b* rgb_row = frame.rgb.ptr<cv::Vec3b>(v) + box.x;
     const float* depth_row = frame.depth_m.ptr<float>(v) + box.x;
     for (int col = 0; col < segment.mask.cols; ++col)
     {
       if (!inside[col]) continue;
       const double x = x_of_col[col];
-      const double normal_dot_ray = normal.x() * x + normal_row;
+      const double normal_dot_ray = normal.x() * x + normal_dot_ray_row;
       if (std::abs(normal_dot_ray) < 1e-9) continue;
       const double scale = normal_dot_centroid / normal_dot_ray;
       if (!(scale > 0.0)) continue;  // the ray meets the plane behind the camera
-      const int bin = static_cast<int>(std::floor((scale * (axis.x() * x + axis_row) - origin_along_m) / bin_m));
+      const int bin = static_cast<int>(std::floor((scale * (axis.x() * x + axis_dot_ray_row) - origin_along_m) / bin_m));
       if (bin < 0 || bin >= bins) continue;
       grey.add(bin, face_grey(rgb_row[col]));
       const float z = depth_row[col];

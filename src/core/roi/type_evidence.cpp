@@ -54,7 +54,7 @@ const BrickType* closestType(const std::vector<const BrickType*>& fitting, doubl
                              const std::vector<SideFaceEvidence>& sides, const std::vector<double>& standing_misfits_m)
 {
   const BrickType* best = nullptr;
-  double best_error_m = std::numeric_limits<double>::max();
+  double best_error_m = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < fitting.size(); ++i)
   {
     const BrickType& type = *fitting[i];
@@ -63,7 +63,7 @@ const BrickType* closestType(const std::vector<const BrickType*>& fitting, doubl
       error_m += side.foot_on_support ? std::abs(side.visible_height_m - type.height_m)
                                       : std::max(0.0, side.visible_height_m - type.height_m);
     if (i < standing_misfits_m.size()) error_m += standing_misfits_m[i];
-    if (error_m < best_error_m)
+    if (!best || error_m < best_error_m)  // (a NaN error never wins)
     {
       best = &type;
       best_error_m = error_m;
@@ -177,6 +177,14 @@ double standingMisfitM(const BrickType& type, double height_above_support_m, con
   return stacks.misfitM(height_above_support_m - type.height_m, kStackItemPenaltyM);
 }
 
+std::vector<double> standingMisfitsM(const std::vector<const BrickType*>& types, double height_above_support_m,
+                                     const StackHeights& stacks)
+{
+  std::vector<double> misfits_m;
+  for (const BrickType* type : types) misfits_m.push_back(standingMisfitM(*type, height_above_support_m, stacks));
+  return misfits_m;
+}
+
 bool standsOnSupportAlone(const BrickType& type, double height_above_support_m, const std::vector<double>& levels_m,
                           double tolerance_m)
 {
@@ -184,6 +192,16 @@ bool standsOnSupportAlone(const BrickType& type, double height_above_support_m, 
   return below_m <= tolerance_m && std::all_of(levels_m.begin(), levels_m.end(), [&](double level_m) {
            return level_m > below_m + tolerance_m;
          });
+}
+
+std::vector<const BrickType*> typesOnSupportAlone(const std::vector<const BrickType*>& rivals,
+                                                  double height_above_support_m, const std::vector<double>& levels_m,
+                                                  double tolerance_m)
+{
+  std::vector<const BrickType*> alone;
+  for (const BrickType* type : rivals)
+    if (standsOnSupportAlone(*type, height_above_support_m, levels_m, tolerance_m)) alone.push_back(type);
+  return alone;
 }
 
 std::vector<const BrickType*> typesStandingAt(const std::vector<const BrickType*>& rivals,
