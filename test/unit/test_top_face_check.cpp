@@ -529,6 +529,34 @@ TEST(TopFaceCheck, ABoxLyingOnItsSideIsNotACompleteTopWhenItsSideFaceHasNearlyTh
   }
 }
 
+TEST(TopFaceCheck, ABoxLyingOnItsSideWhoseSideIsNotItsTopsSizeIsNamedInTheReason)
+{
+  // A large box 0.40 x 0.30 x 0.25 m lying on a long side shows 0.40 x 0.25
+  // m up: 5 cm narrower than its top, partial for its size. The reason says
+  // what the face may be: the box lying on a side.
+  const BrickCatalogue catalogue = BrickCatalogue::fromYamlString(R"(bricks:
+  - {name: box_large, length_m: 0.40, width_m: 0.30, height_m: 0.25}
+)");
+  sim::Scene lying;
+  sim::PlacedBrick box{catalogue.at("box_large"), Eigen::Isometry3d::Identity()};
+  box.world_T_brick.linear() = Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  box.world_T_brick.translation() = Eigen::Vector3d(0.0, 0.0, 0.15);
+  lying.bricks.push_back(box);
+  lying.world_T_camera = sim::lookAt(Eigen::Vector3d(0.0, 0.125, 0.3), 1.2, 89.0, 25.0);
+  const Rendered rendered = render(lying);
+  FrontEndParams params;
+  params.mode = SegmentationMode::kColourFree;
+  const FrontEndResult result = FrontEnd(catalogue, params).process(rendered.frame);
+  ASSERT_FALSE(result.candidates.empty()) << "the 0.40 x 0.25 m face is found";
+  for (const BrickCandidate& candidate : result.candidates)
+  {
+    EXPECT_FALSE(candidate.complete) << candidate.length_m << " x " << candidate.width_m;
+    EXPECT_NE(candidate.partial_reason.find("visible size"), std::string::npos) << candidate.partial_reason;
+    EXPECT_NE(candidate.partial_reason.find("box_large lying on a side"), std::string::npos)
+        << candidate.partial_reason;
+  }
+}
+
 /// The scene with its brick moved down the view until the lowest top corner
 /// projects `past_border_px` below the image's last row.
 sim::Scene withCornerPastBottomBorder(sim::Scene bricks, double past_border_px)

@@ -1315,6 +1315,8 @@ void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& co
     text.precision(3);
     text << "visible size " << candidate.length_m << " x " << candidate.width_m << " m is not the catalogue's "
          << type->length_m << " x " << type->width_m << " m";
+    // A box lying on a side shows such a face up: the doubt names it.
+    if (!candidate.type_doubt.empty()) text << "; " << candidate.type_doubt;
     candidate.partial_reason = text.str();
     return;
   }
