@@ -502,6 +502,26 @@ TEST(TopFaceCheck, AFlatBoxBetweenTallOnesEndsAtTheirWallsWhenNoLargerBoxCouldSt
     }
 }
 
+/// The colour-free front end's result on the only type of `catalogue`
+/// lying on a long side (its width up, resting on the ground), seen from
+/// nearly straight above.
+FrontEndResult colourFreeOfOneLyingOnALongSide(const BrickCatalogue& catalogue)
+{
+  const BrickType& type = catalogue.types().front();
+  sim::Scene lying;
+  sim::PlacedBrick box{type, Eigen::Isometry3d::Identity()};
+  // Brick y (the width) turns up: the box rests on the ground, as tall as
+  // it is wide; its height lies along world y.
+  box.world_T_brick.linear() = Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  box.world_T_brick.translation() = Eigen::Vector3d(0.0, 0.0, 0.5 * type.width_m);
+  lying.bricks.push_back(box);
+  lying.world_T_camera = sim::lookAt(Eigen::Vector3d(0.0, 0.5 * type.height_m, 0.3), 1.2, 89.0, 25.0);
+  const Rendered rendered = render(lying);
+  FrontEndParams params;
+  params.mode = SegmentationMode::kColourFree;
+  return FrontEnd(catalogue, params).process(rendered.frame);
+}
+
 TEST(TopFaceCheck, ABoxLyingOnItsSideIsNotACompleteTopWhenItsSideFaceHasNearlyTheTopsSize)
 {
   // A crate 0.40 x 0.30 x 0.28 m lying on a long side shows 0.40 x 0.28 m
@@ -510,17 +530,7 @@ TEST(TopFaceCheck, ABoxLyingOnItsSideIsNotACompleteTopWhenItsSideFaceHasNearlyTh
   const BrickCatalogue catalogue = BrickCatalogue::fromYamlString(R"(bricks:
   - {name: crate, length_m: 0.40, width_m: 0.30, height_m: 0.28}
 )");
-  sim::Scene lying;
-  sim::PlacedBrick crate{catalogue.at("crate"), Eigen::Isometry3d::Identity()};
-  // Brick y (the width) turns up: the box rests on the ground, 0.30 m tall.
-  crate.world_T_brick.linear() = Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  crate.world_T_brick.translation() = Eigen::Vector3d(0.0, 0.0, 0.15);
-  lying.bricks.push_back(crate);
-  lying.world_T_camera = sim::lookAt(Eigen::Vector3d(0.0, 0.14, 0.3), 1.2, 89.0, 25.0);
-  const Rendered rendered = render(lying);
-  FrontEndParams params;
-  params.mode = SegmentationMode::kColourFree;
-  const FrontEndResult result = FrontEnd(catalogue, params).process(rendered.frame);
+  const FrontEndResult result = colourFreeOfOneLyingOnALongSide(catalogue);
   ASSERT_FALSE(result.candidates.empty()) << "the 0.40 x 0.28 m face is found";
   for (const BrickCandidate& candidate : result.candidates)
   {
@@ -537,16 +547,7 @@ TEST(TopFaceCheck, ABoxLyingOnItsSideWhoseSideIsNotItsTopsSizeIsNamedInTheReason
   const BrickCatalogue catalogue = BrickCatalogue::fromYamlString(R"(bricks:
   - {name: box_large, length_m: 0.40, width_m: 0.30, height_m: 0.25}
 )");
-  sim::Scene lying;
-  sim::PlacedBrick box{catalogue.at("box_large"), Eigen::Isometry3d::Identity()};
-  box.world_T_brick.linear() = Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  box.world_T_brick.translation() = Eigen::Vector3d(0.0, 0.0, 0.15);
-  lying.bricks.push_back(box);
-  lying.world_T_camera = sim::lookAt(Eigen::Vector3d(0.0, 0.125, 0.3), 1.2, 89.0, 25.0);
-  const Rendered rendered = render(lying);
-  FrontEndParams params;
-  params.mode = SegmentationMode::kColourFree;
-  const FrontEndResult result = FrontEnd(catalogue, params).process(rendered.frame);
+  const FrontEndResult result = colourFreeOfOneLyingOnALongSide(catalogue);
   ASSERT_FALSE(result.candidates.empty()) << "the 0.40 x 0.25 m face is found";
   for (const BrickCandidate& candidate : result.candidates)
   {
