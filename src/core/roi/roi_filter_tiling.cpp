@@ -1,0 +1,330 @@
+// RoiFilter, part 2 of 3: splitting a merged colour-free or one-colour face
+// into bricks by tiling it with catalogue tops (face_tiling.h) and checking
+// each tile. roi_filter.cpp measures faces; roi_filter_typing.cpp types them.
+
+#include "brick_pose/roi/roi_filter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <tuple>
+#include <utility>
+
+#include <opencv2/imgproc.hpp>
+
+#include "brick_pose/common/parallel_for.h"
+#include "brick_pose/roi/colour_uniformity.h"
+#include "brick_pose/roi/raised_layer.h"
+#include "brick_pose/roi/seam_probe.h"
+
+#include "roi_filter_internal.h"
+
+namespace brick_pose
+{
+using roi_internal::describe;
+using roi_internal::partRejection;
+using roi_internal::anyTruncated;
+using roi_internal::truncation;
+using roi_internal::kMaxUntiledForAlternative;
+
+namespace
+{
+/// A face of one plate colour tiled with every brick laid one way replaces
+/// the greedy tiling only if it leaves at most this much more of the face
+/// untiled (see tileEachWay): a layout that explains less of the face is
+/// no better for seeing more seams.
+constexpr double kUntiledSlackOneWay = 0.01;
+
+/// A face of one brick's size is cut into smaller bricks along lines only
+/// when each is this dark (grey levels below both sides): the rounded edges
+/// of touching plates draw lines of 24-30 on the rig in normal light (faces
+/// of grey 90-100), while a faint line of 10 is no proof (see
+/// test_face_tiling)...
+constexpr double kClearSeamLineContrast = 15.0;
+
+/// ... or, on a dimmer face, this share of its level in the grey its lines
+/// are read in (faceGreyLevel, FaceGrey): shading scales with the light and
+/// with what the face reflects (in low light the rig's seams between reds
+/// drew lines of 6-8 on a mean grey of 26, read in the mean of the three
+/// channels; read in the reds' own colour both are larger).
+constexpr double kClearSeamLineShare = 0.15;
+
+/// The least line a seam can be on any face, however dim (grey levels): the
+/// image holds whole levels.
+constexpr double kMinSeamLineContrast = 1.0;
+
+/// Per tile, whether it is plain (see colour_uniformity.h), and so is the
+/// whole face (`face`, its uniformity) by its scatter (its seams are
+/// outliers, not print): a plain-looking patch of a printed box, a white
+/// strip between two prints, is no plate.
+std::vector<char> plainTiles(const RgbdFrame& frame, const ColourUniformity& face, const FaceTiling& tiling,
+                             const ColourUniformityParams& params)
+{
+  std::vector<char> plain(tiling.tiles.size(), 0);
+  if (face.samples == 0 || face.sigma_grey > params.max_sigma_grey) return plain;
+  for (std::size_t k = 0; k < tiling.tiles.size(); ++k)
+  {
+    const Segment& tile = tiling.tiles[k].segment;
+    plain[k] = measureColourUniformity(frame, tile.mask, tile.bounding_box_px, params).uniform;
+  }
+  return plain;
+}
+
+/// The first edge of `tile` cut through its segment without a seam seen
+/// along it, or -1.
+int firstUnseenCut(const FaceTile& tile)
+{
+  for (int k = 0; k < 4; ++k)
+    if (tile.cut[k] && !tile.seam_seen[k]) return k;
+  return -1;
+}
+
+/// Tiles of `tiling` with a seam seen along every cut: bricks whose size the
+/// image, not the catalogue, drew.
+int supportedTileCount(const FaceTiling& tiling)
+{
+  return static_cast<int>(std::count_if(tiling.tiles.begin(), tiling.tiles.end(),
+                                        [](const FaceTile& tile) { return firstUnseenCut(tile) < 0; }));
+}
+
+std::vector<const BrickType*> typesFor(const BrickCatalogue& catalogue, const std::string& type_name)
+{
+  std::vector<const BrickType*> types;
+  for (const BrickType& type : catalogue.types())
+    if (type_name.empty() || type.name == type_name) types.push_back(&type);
+  return types;
+}
+}  // namespace
+
+RoiFilter::SeamReading RoiFilter::seamReadingFor(const ColourUniformity& face_uniformity, double face_grey) const
+{
+  SeamReading reading{params_.edges, params_.tiling};
+  if (!face_uniformity.uniform) return reading;
+  // A plain face: its lines are seams.
+  reading.tiling.confirm_along_lines = params_.confirm_seams_along_lines;
+  const double share_of_grey = params_.plain_seam_line_share * face_grey;
+  if (share_of_grey < reading.edges.min_line_contrast)
+    reading.edges.min_line_contrast = std::max(share_of_grey, kMinSeamLineContrast);
+  return reading;
+}
+
+FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                                      const std::vector<const BrickType*>& types,
+                                      const SeamReading& seams) const
+{
+  // All types together first (mixed layers); then, when it saw any seam,
+  // each type alone, the smallest tops first. Among tilings whose tiles'
+  // cuts are seen, the one with most such tiles wins: a row of greens
+  // tiled as reds cuts each green where no seam is, and tiled as oranges
+  // leaves their seams inside its tiles.
+  auto area = [](const BrickType& type) { return type.length_m * type.width_m; };
+  std::vector<std::vector<const BrickType*>> type_sets{types};
+  std::vector<std::vector<const BrickType*>> single;
+  for (const BrickType* type : types) single.push_back({type});
+  std::stable_sort(single.begin(), single.end(),
+                   [&](const auto& a, const auto& b) { return area(*a.front()) < area(*b.front()); });
+  if (types.size() > 1) type_sets.insert(type_sets.end(), single.begin(), single.end());
+  // Every tile drawn by seams and the face covered: the tiler, which
+  // avoids seams inside its tiles, found the finest tiling there is; and a
+  // single type after it can only have fewer, larger tiles.
+  auto whollySeen = [](const FaceTiling& tiling) {
+    return tiling.tiles.size() >= 2 && supportedTileCount(tiling) == static_cast<int>(tiling.tiles.size()) &&
+           tiling.untiled_fraction <= kMaxUntiledForAlternative;
+  };
+  // Nothing seen along any cut of the mixed tiling (an occluded brick, a
+  // row in the dark): no type alone will see more. Most faces tiled here
+  // are such, and this keeps them to one tiling.
+  // A type alone larger than every brick the mixed tiling drew with seams
+  // can only leave those seams inside its tiles.
+  auto wanted = [&](std::size_t set, const std::vector<FaceTiling>& made) {
+    if (set == 0) return true;
+    const FaceTiling& mixed = made.front();
+    if (mixed.seen_cuts == 0 || std::any_of(made.begin(), made.end(), whollySeen)) return false;
+    double largest_seen_m2 = 0.0;
+    for (const FaceTile& tile : mixed.tiles)
+      if (firstUnseenCut(tile) < 0)
+        if (const BrickType* type = catalogue_.find(tile.type_name)) largest_seen_m2 = std::max(largest_seen_m2, area(*type));
+    return largest_seen_m2 == 0.0 || area(*type_sets[set].front()) <= largest_seen_m2 + 1e-9;
+  };
+  std::vector<FaceTiling> tilings = tileFaceEach(frame, segment, measured, type_sets, params_.dimensions.tolerance_m,
+                                                 seams.tiling, seams.edges, wanted);
+  // Ranked by tiles drawn by seams less tiles cut where nothing is seen,
+  // then by the former, then by the share left untiled.
+  FaceTiling* best = nullptr;
+  auto rank = [](const FaceTiling& tiling) {
+    const int supported = supportedTileCount(tiling);
+    const int unsupported = static_cast<int>(tiling.tiles.size()) - supported;
+    return std::make_tuple(supported - unsupported, supported, -tiling.untiled_fraction);
+  };
+  for (FaceTiling& tiling : tilings)
+  {
+    if (tiling.tiles.size() < 2 || tiling.cuts == 0 || supportedTileCount(tiling) == 0) continue;
+    if (!best || rank(tiling) > rank(*best)) best = &tiling;
+  }
+  if (!best) return FaceTiling();
+  cutTileSegments(frame, segment, *best);
+  return std::move(*best);
+}
+
+FaceTiling RoiFilter::tileEachWay(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                                  const std::vector<const BrickType*>& types,
+                                  const SeamReading& seams) const
+{
+  // The greedy tiler lays the tile its seams support best first; where
+  // they are faint (a dim frame) its first tiles may lie across a row, and
+  // the rest follow them. Every tile laid one way, and every tile laid the
+  // other, are the layouts of most rows and layers: one of them is kept
+  // when more of its tiles have every cut seen and it leaves no more of the
+  // face untiled. Otherwise the greedy tiling stands (mixed layouts).
+  std::vector<FaceTiling> tilings = tileFaceEach(
+      frame, segment, measured, {types}, params_.dimensions.tolerance_m, seams.tiling, seams.edges,
+      [](std::size_t, const std::vector<FaceTiling>&) { return true; },
+      {TileOrientation::kEither, TileOrientation::kLongAlongAxis, TileOrientation::kLongAcrossAxis});
+  if (tilings.empty()) return FaceTiling();
+  const FaceTiling& greedy = tilings.front();
+  FaceTiling* best = &tilings.front();
+  for (std::size_t k = 1; k < tilings.size(); ++k)
+    if (supportedTileCount(tilings[k]) > supportedTileCount(*best) &&
+        tilings[k].untiled_fraction <= greedy.untiled_fraction + kUntiledSlackOneWay)
+      best = &tilings[k];
+  cutTileSegments(frame, segment, *best);
+  return std::move(*best);
+}
+
+bool RoiFilter::standsUpFromItsSurroundings(const RgbdFrame& frame, const Segment& segment,
+                                            const PlaneFit& plane) const
+{
+  // The quad of a layer that is no rectangle (boxes of mixed sizes, an L
+  // of rows) has sides that run over the ground or a taller neighbour
+  // beside it, not along the layer's outline: what its sides show says
+  // little there. The outline itself does: around a layer the surface
+  // falls away; around the floor or a table top, objects stand on it.
+  // What an occluder over part of the outline hides, the tiles show: a
+  // tile at it is cut off there, and its size does not tell its type.
+  const int inner_px = std::max(1, params_.edges.probe_px / 2);
+  const int outer_px = inner_px + params_.edges.probe_px;
+  return measureOutlineSurroundings(frame, segment, plane, params_.edges.stepM(plane.rms_m), inner_px, outer_px)
+      .fallsAwayBesideWalls();
+}
+
+bool RoiFilter::oneTileWide(const BrickCandidate& candidate) const
+{
+  // Two tiles side by side need a whole brick's width and the share of
+  // another's the tiler keeps a tile cut off by the border with.
+  double narrowest_m = std::numeric_limits<double>::max();
+  for (const BrickType& type : catalogue_.types()) narrowest_m = std::min(narrowest_m, type.width_m);
+  return candidate.width_m < (1.0 + params_.tiling.min_visible_fraction) * narrowest_m;
+}
+
+bool RoiFilter::mayHoldTwoBricks(const BrickCandidate& candidate) const
+{
+  double smallest_area_m2 = std::numeric_limits<double>::max();
+  for (const BrickType& type : catalogue_.types()) smallest_area_m2 = std::min(smallest_area_m2, type.length_m * type.width_m);
+  return candidate.length_m * candidate.width_m >= 1.8 * smallest_area_m2;
+}
+
+std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
+                                          const FrameContext& context, bool seams_required,
+                                          CloudProcessingTimings* cloud_timings, FaceTiling* tried,
+                                          const std::vector<const BrickType*>* only_types) const
+{
+  const std::vector<const BrickType*> types = only_types ? *only_types : typesFor(catalogue_, segment.type_name);
+  if (types.empty()) return std::nullopt;
+  const bool typed_by_size = segment.type_name.empty();
+  if (typed_by_size && !isRaisedLayer(measured.edge_kinds, clearOfImageBorder(segment, frame, params_.edges.probe_px)) &&
+      !standsUpFromItsSurroundings(frame, segment, measured.plane))
+    return std::nullopt;
+  // Most faces cut off on a pile are one brick partly out of view: where
+  // nothing could be a seam across it, tiling would find no cut to keep.
+  if (typed_by_size && !seams_required && anyTruncated(measured) && oneTileWide(measured) &&
+      !probeSeamsAcross(frame, segment, measured, params_.edges.min_line_contrast, params_.edges.min_groove_m)
+           .seam_possible)
+    return std::nullopt;
+  // Read once: the seam reading and the tiles' plainness both start from it.
+  const ColourUniformity face_uniformity =
+      measureColourUniformity(frame, segment.mask, segment.bounding_box_px, params_.uniformity);
+  // In the grey the seams are read in: their lines scale with it.
+  const double face_grey = faceGreyLevel(frame, segment.mask, segment.bounding_box_px);
+  const SeamReading seams = seamReadingFor(face_uniformity, face_grey);
+  FaceTiling tiling = typed_by_size && !seams_required ? tileBySeenSeams(frame, segment, measured, types, seams)
+                      : typed_by_size ? tileFace(frame, segment, measured, types, params_.dimensions.tolerance_m,
+                                                 seams.tiling, seams.edges)
+                                      : tileEachWay(frame, segment, measured, types, seams);
+  if (tried) *tried = tiling;
+  if (tiling.tiles.size() < 2) return std::nullopt;
+  // Without colour every cut must be seen: a cut made from sizes alone
+  // would also make up the type of the bricks it separates. A dark line is
+  // a seam only on a plain face (see colour_uniformity.h): print draws lines
+  // on boxes, and only a gap between two of them dents the depth, while a
+  // real D4xx smooths the groove of a closed seam away (a 4 mm edge rounding
+  // leaves about half a millimetre under 3 mm of noise). Where a face of one
+  // brick's size is doubted (seams_required), every cut must be grooved, or
+  // clearly lined with every tile plain. A face larger than any brick has no
+  // single-brick reading: each of its tiles needs its own cuts seen (below),
+  // and a tile whose cut is only a line on a printed face stays partial.
+  if (typed_by_size && (tiling.cuts == 0 || tiling.seen_cuts == 0)) return std::nullopt;
+  const bool cuts_grooved = tiling.cuts > 0 && tiling.grooved_cuts == tiling.cuts;
+  const double clear_line = std::min(kClearSeamLineContrast, kClearSeamLineShare * face_grey);
+  const bool cuts_lined = tiling.cuts > 0 && tiling.seen_cuts == tiling.cuts &&
+                          (!seams_required || tiling.weakest_cut_line >= clear_line);
+  if (seams_required && !cuts_grooved && !cuts_lined) return std::nullopt;
+  // Read only where it can decide something (it reads every tile).
+  const std::vector<char> plain = typed_by_size && (!seams_required || !cuts_grooved)
+                                      ? plainTiles(frame, face_uniformity, tiling, params_.uniformity)
+                                      : std::vector<char>(tiling.tiles.size(), 0);
+  const bool all_plain = std::all_of(plain.begin(), plain.end(), [](char p) { return p != 0; });
+  if (seams_required && !cuts_grooved && !all_plain) return std::nullopt;
+  // Each tile in its own slots, whichever thread measures it; gathered in
+  // the tiling's order.
+  const int tile_count = static_cast<int>(tiling.tiles.size());
+  std::vector<BrickCandidate> candidates(tiling.tiles.size());
+  std::vector<std::optional<std::string>> reasons(tiling.tiles.size());
+  std::vector<CloudProcessingTimings> tile_timings(tiling.tiles.size());
+  parallelFor(tile_count, params_.worker_threads, [&](int k) {
+    // The tiling chose the brick's size: check the part against that type.
+    Segment& part = tiling.tiles[k].segment;
+    part.type_name = tiling.tiles[k].type_name;
+    BrickCandidate& candidate = candidates[k];
+    std::optional<std::string>& reason = reasons[k];
+    // Without colour, a tile cut where no seam shows is a guess of the
+    // tiler's (checked first: it needs no measuring).
+    if (typed_by_size && !seams_required)
+      if (const int unseen = firstUnseenCut(tiling.tiles[k]); unseen >= 0)
+      {
+        reason = "cut " + std::to_string(unseen) + " from its neighbour shows no seam (no groove, no line): " +
+                 "its size cannot tell its type";
+        return;
+      }
+    reason = measure(frame, part, context, &tile_timings[k], candidate, &seams.edges);
+    if (!reason) reason = assignType(frame, context, part, candidate);
+    candidate.typed_by_colour = !typed_by_size;  // the tiler's type is a size
+    // Without colour, a brick cut off by the border or an occluder could be
+    // any longer type: its size does not tell.
+    if (!reason && typed_by_size) endAtWalls(frame, context, candidate);
+    if (!reason && typed_by_size && anyTruncated(candidate))
+      reason = "face is cut by an occluder or the image border (" + truncation(candidate) +
+               "): its size cannot tell its type";
+    // The tiler's size is one reading of the tile; types sharing that top
+    // and boxes lying on a side are its rivals, as for any colour-free face.
+    if (!reason && typed_by_size) reason = typeBySize(frame, context, candidate);
+    if (!reason) judgeCompleteness(frame, context, !typed_by_size || plain[k], candidate);
+    if (!reason && typed_by_size) doubtComposedTop(frame, plain[k] != 0, true, candidate);
+  });
+  RoiOutcome outcome;
+  outcome.candidates.reserve(tiling.tiles.size());  // a growing vector would copy the candidates
+  for (int k = 0; k < tile_count; ++k)
+  {
+    if (cloud_timings) *cloud_timings += tile_timings[k];
+    if (reasons[k])
+      outcome.rejections.push_back(partRejection(tiling.tiles[k].segment, *reasons[k]));
+    else
+      outcome.candidates.push_back(std::move(candidates[k]));
+  }
+  if (tiling.untiled_fraction > 0.2)
+    outcome.rejections.push_back({describe("part of a split segment: a share of", tiling.untiled_fraction,
+                                           "of it fits no catalogue brick; limit", 0.2),
+                                  {}, 0});
+  return outcome;
+}
+}  // namespace brick_pose
