@@ -376,6 +376,83 @@ TEST(ColourFreeSegmenter, ExcludedPixelsAreLeftOut)
   EXPECT_THROW(ColourFreeSegmenter().segment(frame, cv::Mat::zeros(10, 10, CV_8UC1)), InputError);
 }
 
+/// The ground of renderFrame's flat scenes at depth 1 m facing the camera,
+/// as tf would give it: up (0, 0, -1), the height of x being 1 - x.z.
+Eigen::Vector4d groundAtOneMetre() { return Eigen::Vector4d(0.0, 0.0, -1.0, 1.0); }
+
+TEST(ColourFreeSegmenter, AGivenSupportIsTheSupportingPlaneAndTheFacesOnItAreUnchanged)
+{
+  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
+  const cv::Rect face(200, 150, 220, 130);
+  const RgbdFrame frame = renderFrame(
+      camera, [&](int u, int v) { return face.contains({u, v}) ? 0.75 : 1.0; }, 0.0015, 3);
+  const ColourFreeSegmenter segmenter;
+  ColourFreeTimings found, given;
+  const PlanarSegments all = segmenter.segmentPlanes(frame, cv::Mat(), &found);
+  const PlanarSegments on_ground = segmenter.segmentPlanes(frame, cv::Mat(), &given, true, groundAtOneMetre());
+  ASSERT_EQ(all.segments.size(), 2u);
+  ASSERT_EQ(on_ground.segments.size(), 2u);
+  EXPECT_TRUE(on_ground.supporting[0]);
+  EXPECT_FALSE(on_ground.supporting[1]);
+  EXPECT_EQ(on_ground.segments[1].pixel_indices, all.segments[1].pixel_indices);
+  EXPECT_EQ(on_ground.segments[0].pixel_indices, all.segments[0].pixel_indices);
+  EXPECT_EQ(given.planes, found.planes);
+  EXPECT_DOUBLE_EQ(given.noise_at_1m_m, found.noise_at_1m_m) << "the noise is measured on every cell as before";
+  const PlanarSegments tops = segmenter.segmentPlanes(frame, cv::Mat(), nullptr, false, groundAtOneMetre());
+  ASSERT_EQ(tops.segments.size(), 1u);
+  EXPECT_EQ(tops.segments[0].bounding_box_px, face);
+}
+
+TEST(ColourFreeSegmenter, WithTheSupportGivenOutOfViewTheLowerOfTwoTopsIsNotTakenForIt)
+{
+  // A close view of two layers' tops (0.9 and 0.8 m away), no ground in
+  // view: found rather than given, the lower top is the supporting plane
+  // (nothing below it, something on it) and is left out; with the ground
+  // given 1 m away, both are tops.
+  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
+  const RgbdFrame frame = renderFrame(camera, [&](int u, int) { return u < 400 ? 0.9 : 0.8; }, 0.0015, 7);
+  const ColourFreeSegmenter segmenter;
+  const PlanarSegments found = segmenter.segmentPlanes(frame, cv::Mat(), nullptr, false);
+  ASSERT_EQ(found.segments.size(), 1u) << "the lower top was taken for the support";
+  const PlanarSegments given = segmenter.segmentPlanes(frame, cv::Mat(), nullptr, false, groundAtOneMetre());
+  ASSERT_EQ(given.segments.size(), 2u);
+  EXPECT_FALSE(given.supporting[0]);
+  EXPECT_FALSE(given.supporting[1]);
+}
+
+TEST(ColourFreeSegmenter, OnlyWhatLiesWithinTheMarginOfAGivenSupportIsTheSupport)
+{
+  // Two faces, 5 and 2 cm above the ground: support_margin_m (3 cm) keeps
+  // the first a top, and the second is taken for part of the support (as
+  // such pieces were when the support was found rather than given).
+  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
+  const cv::Rect higher(100, 150, 180, 130), lower(380, 150, 180, 130);
+  const RgbdFrame frame = renderFrame(
+      camera, [&](int u, int v) { return higher.contains({u, v}) ? 0.95 : lower.contains({u, v}) ? 0.98 : 1.0; },
+      0.0005, 5);
+  const PlanarSegments tops =
+      ColourFreeSegmenter().segmentPlanes(frame, cv::Mat(), nullptr, false, groundAtOneMetre());
+  ASSERT_EQ(tops.segments.size(), 1u);
+  EXPECT_EQ(tops.segments[0].bounding_box_px, higher);
+}
+
+TEST(ColourFreeSegmenter, SomethingLowOnAGivenSupportDoesNotLiftItsPlane)
+{
+  // A sheet 2 cm thick over a third of the view: within support_margin_m
+  // its cells are the support's candidates, but the plane is refitted to
+  // the cells on the ground alone, which then takes every ground pixel.
+  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
+  const cv::Rect sheet(0, 0, 640, 160);
+  const RgbdFrame frame =
+      renderFrame(camera, [&](int u, int v) { return sheet.contains({u, v}) ? 0.98 : 1.0; }, 0.0005, 11);
+  const PlanarSegments all = ColourFreeSegmenter().segmentPlanes(frame, cv::Mat(), nullptr, true, groundAtOneMetre());
+  const auto support = std::find(all.supporting.begin(), all.supporting.end(), true);
+  ASSERT_NE(support, all.supporting.end());
+  const Segment& ground = all.segments[static_cast<std::size_t>(support - all.supporting.begin())];
+  EXPECT_GT(ground.pixel_indices.size(), 0.99 * 640 * (480 - 160));
+  for (const int pixel : ground.pixel_indices) ASSERT_FALSE(sheet.contains({pixel % 640, pixel / 640}));
+}
+
 TEST(ColourFreeSegmenter, ParametersAreValidatedByName)
 {
   auto expectField = [](const ColourFreeParams& params, const std::string& field) {
