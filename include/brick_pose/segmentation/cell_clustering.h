@@ -26,7 +26,6 @@
 // alone would let a small node 2 cm off a large plane merge: it hardly
 // raises the large node's MSE.
 
-#include <cstdint>
 #include <vector>
 
 #include "brick_pose/segmentation/cell_grid.h"
@@ -96,11 +95,9 @@ struct PlaneNode
   PlaneNode(const PlaneMoments& moments, const MomentPlane& plane, const DepthNoise& noise);
 };
 
-/// The plane of each cell with enough pixels (invalid otherwise), but for
-/// the cells non-zero in `skipped` (empty, or one per cell), left invalid;
-/// with `parallel`, split over OpenCV's threads.
-std::vector<MomentPlane> fitCellPlanes(const CellGrid& grid, double min_cell_fill, bool parallel = false,
-                                       const std::vector<std::uint8_t>& skipped = {});
+/// The plane of each cell with enough pixels (invalid otherwise); with
+/// `parallel`, split over OpenCV's threads.
+std::vector<MomentPlane> fitCellPlanes(const CellGrid& grid, double min_cell_fill, bool parallel = false);
 
 /// Where two planes meet: the points on either side of their seam.
 struct PlaneSeam

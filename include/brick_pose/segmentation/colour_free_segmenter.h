@@ -13,16 +13,13 @@
 // stage splits them); faces at different heights or orientations are kept
 // apart, with borders accurate to about a pixel.
 
-#include <optional>
 #include <vector>
 
-#include <Eigen/Core>
 #include <opencv2/core.hpp>
 
 #include "brick_pose/frame/rgbd_frame.h"
 #include "brick_pose/segmentation/cell_clustering.h"
 #include "brick_pose/segmentation/cell_grid.h"
-#include "brick_pose/segmentation/depth_noise.h"
 #include "brick_pose/segmentation/plane_refinement.h"
 #include "brick_pose/segmentation/segment.h"
 
@@ -60,9 +57,6 @@ struct ColourFreeParams
   /// The supporting plane (ground, table) is the largest region covering at
   /// least this fraction of the image with no other region more than
   /// support_margin_m below it and some region more than that above it.
-  /// Given one (segmentPlanes), the cells lying flat within
-  /// support_margin_m of it are its own, and the regions within that of it
-  /// are supporting.
   double support_min_image_fraction = 0.1;
   double support_margin_m = 0.03;
 
@@ -111,17 +105,8 @@ public:
   /// The same segments with their planes and the supporting plane marked;
   /// without `with_supporting`, the supporting plane's segments are left
   /// out (not built: they are most of the image).
-  ///
-  /// With `given_support` (unit n and d: n . x + d is the height of camera
-  /// point x above it, as tf gives the plane the pile stands on), the cells
-  /// lying flat on that plane (within support_margin_m and the noise) are
-  /// not clustered: they make one plane, fitted to them, and the regions on
-  /// the given plane are the supporting plane. On a pile seen from above most
-  /// of the image is the ground, and clustering it cell by cell was most of
-  /// the clustering's time.
   PlanarSegments segmentPlanes(const RgbdFrame& frame, const cv::Mat& excluded = cv::Mat(),
-                               ColourFreeTimings* timings = nullptr, bool with_supporting = true,
-                               const std::optional<Eigen::Vector4d>& given_support = std::nullopt) const;
+                               ColourFreeTimings* timings = nullptr, bool with_supporting = true) const;
 
   /// The planar region of each pixel (CV_32SC1, -1 none) before the
   /// regions are cut into connected segments, for tests and tools.
@@ -137,22 +122,8 @@ private:
   double measuredNoiseAt1m(const CellGrid& grid) const;
   /// Plane index per pixel (-1 none) into `labels`; returns the planes
   /// and their regions.
-  CellPlanes labelPlanes(const RgbdFrame& frame, const cv::Mat& excluded, cv::Mat& labels, ColourFreeTimings& timings,
-                         const std::optional<Eigen::Vector4d>& given_support = std::nullopt) const;
-  /// Per cell: whether it lies on `support` (see segmentPlanes): its
-  /// points' mean within support_margin_m of it, and flat about its normal
-  /// within the `noise` (CellClustering::planarCell).
-  std::vector<std::uint8_t> cellsOnSupport(const CellGrid& grid, const Eigen::Vector4d& support,
-                                           const DepthNoise& noise) const;
-  /// Adds to `planes`, as a region of its own, the plane of the cells of
-  /// `on_support` (cellsOnSupport) that lie within the `noise` of their
-  /// median height above `support`, refitted to those within the noise of
-  /// that plane; labels with it those flat about it (planarCell).
-  void addSupportPlane(const CellGrid& grid, const Eigen::Vector4d& support, std::vector<std::uint8_t> on_support,
-                       const DepthNoise& noise, CellPlanes& planes) const;
-  /// Whether `plane` lies on `support` (see segmentPlanes): within
-  /// support_margin_m of it, at most `max_tilt_deg` from parallel.
-  bool onGivenSupport(const MomentPlane& plane, const Eigen::Vector4d& support, double max_tilt_deg) const;
+  CellPlanes labelPlanes(const RgbdFrame& frame, const cv::Mat& excluded, cv::Mat& labels,
+                         ColourFreeTimings& timings) const;
   /// Per region: whether it is the supporting plane (see PlanarSegments).
   std::vector<bool> supportingRegions(const std::vector<MomentPlane>& planes, const std::vector<int>& area_px,
                                       int image_area_px) const;

@@ -130,15 +130,13 @@ void CellClusteringParams::validate() const
   check.require(min_step_fraction >= 0.0, "min_step_fraction", "must be >= 0");
 }
 
-std::vector<MomentPlane> fitCellPlanes(const CellGrid& grid, double min_cell_fill, bool parallel,
-                                       const std::vector<std::uint8_t>& skipped)
+std::vector<MomentPlane> fitCellPlanes(const CellGrid& grid, double min_cell_fill, bool parallel)
 {
   const double min_points = std::max(3.0, min_cell_fill * grid.cellPx() * grid.cellPx());
   std::vector<MomentPlane> planes(static_cast<std::size_t>(grid.size()));
   auto fitRange = [&](const cv::Range& cells) {
     for (int i = cells.start; i < cells.end; ++i)
-      if (grid.moments(i).count >= min_points && (skipped.empty() || !skipped[i]))
-        planes[i] = fitMomentPlane(grid.moments(i));
+      if (grid.moments(i).count >= min_points) planes[i] = fitMomentPlane(grid.moments(i));
   };
   // One eigen decomposition per cell: a third of the cell stage.
   if (parallel)

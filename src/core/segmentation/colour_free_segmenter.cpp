@@ -3,11 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <functional>
 
 #include <opencv2/core/utility.hpp>
 
-#include "brick_pose/common/angles.h"
 #include "brick_pose/common/elapsed.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/common/statistics.h"
@@ -25,11 +23,6 @@ namespace
 /// 2, 3 and 4 cells of 8 px read 0.74, 0.85 and 0.93 of the true sigma), yet
 /// small enough that most blocks lie on one face.
 constexpr int kNoiseBlockCells = 4;
-
-/// A cell of the given support lies within this many depth-noise sigmas of
-/// its plane (a cell's mean of correlated noise is hardly better than one
-/// pixel's).
-constexpr double kSupportCellSigmas = 3.0;
 
 /// Wall and calling-thread CPU time of a stage (the CPU time stays
 /// meaningful on a machine shared with other processes).
@@ -83,8 +76,7 @@ int ColourFreeSegmenter::cellPx(int width_px) const
 }
 
 CellPlanes ColourFreeSegmenter::labelPlanes(const RgbdFrame& frame, const cv::Mat& excluded, cv::Mat& labels,
-                                            ColourFreeTimings& t,
-                                            const std::optional<Eigen::Vector4d>& given_support) const
+                                            ColourFreeTimings& t) const
 {
   if (!excluded.empty() && (excluded.type() != CV_8UC1 || excluded.size() != frame.depth_m.size()))
     throw InputError("colour-free segmenter: the excluded mask must be CV_8UC1 of the frame's size");
@@ -94,24 +86,16 @@ CellPlanes ColourFreeSegmenter::labelPlanes(const RgbdFrame& frame, const cv::Ma
   StageClock clock;
   const PixelRays rays(frame.camera);
   const CellGrid grid(frame, rays, cellPx(frame.width_px()), excluded, params_.parallel);
-  // The cells of a given support are not clustered (on a pile seen from
-  // above they are most of the image): they join one plane fitted to them
-  // afterwards, which takes its pixels in the refinement as the clustered
-  // ground did. The noise is still measured on every cell.
+  const std::vector<MomentPlane> cell_planes = fitCellPlanes(grid, params_.clustering.min_cell_fill, params_.parallel);
   DepthNoise noise;
   noise.floor_m = params_.noise_floor_m;
   noise.sigma_at_1m_m = params_.estimate_noise ? measuredNoiseAt1m(grid) : params_.noise_at_1m_m;
   noise.correlated_points = static_cast<double>(params_.noise_correlation_px) * params_.noise_correlation_px;
-  const std::vector<std::uint8_t> on_support =
-      given_support ? cellsOnSupport(grid, *given_support, noise) : std::vector<std::uint8_t>();
-  const std::vector<MomentPlane> cell_planes =
-      fitCellPlanes(grid, params_.clustering.min_cell_fill, params_.parallel, on_support);
   t.noise_at_1m_m = noise.sigma_at_1m_m;
   clock.stop(t.cells_ms, t.cells_cpu_ms);
 
   clock = StageClock();
   CellPlanes planes = clustering_.cluster(grid, cell_planes, noise);
-  if (given_support) addSupportPlane(grid, *given_support, on_support, noise, planes);
   t.planes = static_cast<int>(planes.planes.size());
   clock.stop(t.clustering_ms, t.clustering_cpu_ms);
 
@@ -150,8 +134,7 @@ std::vector<Segment> ColourFreeSegmenter::segment(const RgbdFrame& frame, const 
 }
 
 PlanarSegments ColourFreeSegmenter::segmentPlanes(const RgbdFrame& frame, const cv::Mat& excluded,
-                                                  ColourFreeTimings* timings, bool with_supporting,
-                                                  const std::optional<Eigen::Vector4d>& given_support) const
+                                                  ColourFreeTimings* timings, bool with_supporting) const
 {
   PlanarSegments result;
   // No face fits an image smaller than the smallest segment.
@@ -161,7 +144,7 @@ PlanarSegments ColourFreeSegmenter::segmentPlanes(const RgbdFrame& frame, const 
   // The label image is working memory kept between frames (a fresh one
   // costs more in page faults than filling it).
   thread_local cv::Mat labels;
-  const CellPlanes planes = labelPlanes(frame, excluded, labels, t, given_support);
+  const CellPlanes planes = labelPlanes(frame, excluded, labels, t);
   const StageClock clock;
   // Plane of each region; its size (the area of its segments) comes from
   // the segment extraction, which then leaves out the supporting plane's
@@ -174,12 +157,7 @@ PlanarSegments ColourFreeSegmenter::segmentPlanes(const RgbdFrame& frame, const 
   const RegionDropper findSupporting = [&](const std::vector<int>& region_area_px) {
     std::vector<int> area_px(region_moments.size(), 0);
     std::copy_n(region_area_px.begin(), std::min(region_area_px.size(), area_px.size()), area_px.begin());
-    if (given_support)
-      for (std::size_t r = 0; r < region_planes.size(); ++r)
-        supporting[r] = region_planes[r].valid && area_px[r] > 0 &&
-                        onGivenSupport(region_planes[r], *given_support, params_.clustering.min_angle_deg);
-    else
-      supporting = supportingRegions(region_planes, area_px, frame.width_px() * frame.height_px());
+    supporting = supportingRegions(region_planes, area_px, frame.width_px() * frame.height_px());
     return with_supporting ? std::vector<bool>() : supporting;
   };
   std::vector<int> segment_regions;
@@ -193,93 +171,6 @@ PlanarSegments ColourFreeSegmenter::segmentPlanes(const RgbdFrame& frame, const 
   }
   clock.stop(t.segments_ms, t.segments_cpu_ms);
   return result;
-}
-
-std::vector<std::uint8_t> ColourFreeSegmenter::cellsOnSupport(const CellGrid& grid, const Eigen::Vector4d& support,
-                                                               const DepthNoise& noise) const
-{
-  // Without a plane of their own (none is fitted for them): their mean
-  // within support_margin_m of the support, and flat about its normal as
-  // the clustering wants a node flat about its own. The foot of a side, the
-  // ground mixed with something on it, keep their planes and clusters.
-  const double min_points = std::max(3.0, params_.clustering.min_cell_fill * grid.cellPx() * grid.cellPx());
-  std::vector<std::uint8_t> on(static_cast<std::size_t>(grid.size()), 0);
-  MomentPlane level;
-  level.normal = support.head<3>();
-  level.valid = true;
-  for (int cell = 0; cell < grid.size(); ++cell)
-  {
-    const PlaneMoments& moments = grid.moments(cell);
-    if (moments.count < min_points) continue;
-    level.centroid_m = moments.mean();
-    if (std::abs(level.normal.dot(level.centroid_m) + support[3]) > params_.support_margin_m) continue;
-    level.count = moments.count;
-    level.mse_m2 = level.normal.dot(moments.covariance() * level.normal);
-    on[cell] = clustering_.planarCell(grid, cell, level, noise);
-  }
-  return on;
-}
-
-void ColourFreeSegmenter::addSupportPlane(const CellGrid& grid, const Eigen::Vector4d& support,
-                                          std::vector<std::uint8_t> on_support, const DepthNoise& noise,
-                                          CellPlanes& planes) const
-{
-  // The candidates may hold something low lying on the support, or the foot
-  // of a side: the clustering kept those out of the ground's node. Here the
-  // cells at the candidates' median height are the support's, within the
-  // noise, and once more those within the noise of the plane fitted to them.
-  std::vector<double> heights_m;
-  for (int cell = 0; cell < grid.size(); ++cell)
-    if (on_support[cell]) heights_m.push_back(support.head<3>().dot(grid.moments(cell).mean()) + support[3]);
-  if (heights_m.empty()) return;
-  const double median_m = upperMedianInPlace(heights_m);
-  auto keepNear = [&](const std::function<double(const Eigen::Vector3d&)>& offset_m) {
-    PlaneMoments moments;
-    for (int cell = 0; cell < grid.size(); ++cell)
-    {
-      if (!on_support[cell]) continue;
-      const Eigen::Vector3d mean = grid.moments(cell).mean();
-      on_support[cell] = std::abs(offset_m(mean)) <= kSupportCellSigmas * noise.sigma(mean.z());
-      if (on_support[cell]) moments += grid.moments(cell);
-    }
-    return moments;
-  };
-  PlaneMoments moments =
-      keepNear([&](const Eigen::Vector3d& mean) { return support.head<3>().dot(mean) + support[3] - median_m; });
-  MomentPlane plane = fitMomentPlane(moments);
-  if (!plane.valid) return;
-  moments = keepNear([&](const Eigen::Vector3d& mean) { return plane.signedDistance(mean); });
-  plane = fitMomentPlane(moments);
-  if (!plane.valid) return;
-  // Only the cells the clustering would have taken for nodes join it (a
-  // cell of the ground mixed with the foot of a box stays open to both in
-  // the refinement, as before): flat about the plane's normal, within the
-  // noise, with no depth step.
-  const int index = static_cast<int>(planes.planes.size());
-  int cells = 0;
-  for (int cell = 0; cell < grid.size(); ++cell)
-  {
-    if (!on_support[cell]) continue;
-    MomentPlane about = plane;
-    about.centroid_m = grid.moments(cell).mean();
-    about.count = grid.moments(cell).count;
-    about.mse_m2 = plane.normal.dot(grid.moments(cell).covariance() * plane.normal);
-    if (!clustering_.planarCell(grid, cell, about, noise)) continue;
-    planes.cell_labels[cell] = index;
-    ++cells;
-  }
-  planes.planes.push_back(plane);
-  planes.moments.push_back(moments);
-  planes.cell_counts.push_back(cells);
-  planes.regions.push_back(planes.region_count++);
-}
-
-bool ColourFreeSegmenter::onGivenSupport(const MomentPlane& plane, const Eigen::Vector4d& support,
-                                         double max_tilt_deg) const
-{
-  const Eigen::Vector3d up = support.head<3>();
-  return std::abs(up.dot(plane.centroid_m) + support[3]) <= params_.support_margin_m &&
-         std::abs(up.dot(plane.normal)) >= std::cos(max_tilt_deg * kDegToRad);
 }
 
 std::vector<bool> ColourFreeSegmenter::supportingRegions(const std::vector<MomentPlane>& planes,
