@@ -376,6 +376,46 @@ TEST(ColourFreeSegmenter, ExcludedPixelsAreLeftOut)
   EXPECT_THROW(ColourFreeSegmenter().segment(frame, cv::Mat::zeros(10, 10, CV_8UC1)), InputError);
 }
 
+/// The ground of renderFrame's flat scenes at depth 1 m facing the camera,
+/// as tf would give it: up (0, 0, -1), the height of x being 1 - x.z.
+Eigen::Vector4d groundAtOneMetre() { return Eigen::Vector4d(0.0, 0.0, -1.0, 1.0); }
+
+TEST(ColourFreeSegmenter, WithTheSupportGivenOutOfViewTheLowerOfTwoTopsIsNotTakenForIt)
+{
+  // A close view of two layers' tops (0.9 and 0.8 m away), no ground in
+  // view: found rather than given, the lower top is the supporting plane
+  // (nothing below it, something on it) and is left out; with the ground
+  // given 1 m away, both are tops.
+  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
+  const RgbdFrame frame = renderFrame(camera, [&](int u, int) { return u < 400 ? 0.9 : 0.8; }, 0.0015, 7);
+  const ColourFreeSegmenter segmenter;
+  const PlanarSegments found = segmenter.segmentPlanes(frame, cv::Mat(), nullptr, false);
+  ASSERT_EQ(found.segments.size(), 1u) << "the lower top was taken for the support";
+  const PlanarSegments given = segmenter.segmentPlanes(frame, cv::Mat(), nullptr, false, groundAtOneMetre());
+  ASSERT_EQ(given.segments.size(), 2u);
+  EXPECT_FALSE(given.supporting[0]);
+  EXPECT_FALSE(given.supporting[1]);
+}
+
+TEST(ColourFreeSegmenter, WithTheSupportGivenTheGroundInViewIsTheSupportingPlane)
+{
+  // The ground and a face 25 cm up: the ground, on the given plane, is the
+  // supporting plane and the face is not; a normal of any length is the
+  // same plane, and a plane without a normal is an error.
+  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
+  const cv::Rect face(200, 150, 220, 130);
+  const RgbdFrame frame = renderFrame(
+      camera, [&](int u, int v) { return face.contains({u, v}) ? 0.75 : 1.0; }, 0.0015, 3);
+  const ColourFreeSegmenter segmenter;
+  const PlanarSegments all = segmenter.segmentPlanes(frame, cv::Mat(), nullptr, true, Eigen::Vector4d(0, 0, -2, 2));
+  ASSERT_EQ(all.segments.size(), 2u);
+  EXPECT_TRUE(all.supporting[0]);
+  EXPECT_FALSE(all.supporting[1]);
+  EXPECT_EQ(all.segments[1].bounding_box_px, face);
+  EXPECT_THROW(segmenter.segmentPlanes(frame, cv::Mat(), nullptr, true, Eigen::Vector4d(0, 0, 0, 1)), InputError);
+  EXPECT_THROW(segmenter.segmentPlanes(frame, cv::Mat(), nullptr, true, Eigen::Vector4d(0, 0, NAN, 1)), InputError);
+}
+
 TEST(ColourFreeSegmenter, ParametersAreValidatedByName)
 {
   auto expectField = [](const ColourFreeParams& params, const std::string& field) {

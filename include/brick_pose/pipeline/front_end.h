@@ -137,6 +137,9 @@ private:
   std::vector<Segment> hsvSegments(const RgbdFrame& frame) const;
   /// The colour-free segments, without the supporting plane when so configured.
   std::vector<Segment> colourFreeSegments(const RgbdFrame& frame, const cv::Mat& excluded = cv::Mat()) const;
+  /// The plane the pile stands on when it is given (the frame's from tf,
+  /// else RoiFilterParams::support_plane), as a unit normal and offset.
+  std::optional<Eigen::Vector4d> givenSupportPlane(const RgbdFrame& frame) const;
   /// Joins pieces of one face (see FrontEndParams::merge_face_pieces).
   void mergeFacePieces(const RgbdFrame& frame, const FrameContext& context, FrontEndResult& result) const;
   /// Drops (as rejections) candidates below RoiFilterParams' minimum visible

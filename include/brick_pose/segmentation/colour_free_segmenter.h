@@ -13,8 +13,10 @@
 // stage splits them); faces at different heights or orientations are kept
 // apart, with borders accurate to about a pixel.
 
+#include <optional>
 #include <vector>
 
+#include <Eigen/Core>
 #include <opencv2/core.hpp>
 
 #include "brick_pose/frame/rgbd_frame.h"
@@ -105,8 +107,16 @@ public:
   /// The same segments with their planes and the supporting plane marked;
   /// without `with_supporting`, the supporting plane's segments are left
   /// out (not built: they are most of the image).
+  ///
+  /// With `given_support` (n and d: n . x + d is, for a unit n, the height
+  /// of camera point x above the plane the pile stands on, as tf gives it;
+  /// InputError when it is not finite or n is zero), the supporting plane
+  /// is the regions lying on it (within support_margin_m, parallel within
+  /// the clustering's min_angle_deg) and no other: a layer's top filling a
+  /// close view, with a lower one beside it, is never taken for the support.
   PlanarSegments segmentPlanes(const RgbdFrame& frame, const cv::Mat& excluded = cv::Mat(),
-                               ColourFreeTimings* timings = nullptr, bool with_supporting = true) const;
+                               ColourFreeTimings* timings = nullptr, bool with_supporting = true,
+                               const std::optional<Eigen::Vector4d>& given_support = std::nullopt) const;
 
   /// The planar region of each pixel (CV_32SC1, -1 none) before the
   /// regions are cut into connected segments, for tests and tools.
@@ -124,6 +134,9 @@ private:
   /// and their regions.
   CellPlanes labelPlanes(const RgbdFrame& frame, const cv::Mat& excluded, cv::Mat& labels,
                          ColourFreeTimings& timings) const;
+  /// Whether `plane` lies on the unit-normal plane `support`: within
+  /// support_margin_m of it and parallel within min_angle_deg.
+  bool onGivenSupport(const MomentPlane& plane, const Eigen::Vector4d& support) const;
   /// Per region: whether it is the supporting plane (see PlanarSegments).
   std::vector<bool> supportingRegions(const std::vector<MomentPlane>& planes, const std::vector<int>& area_px,
                                       int image_area_px) const;

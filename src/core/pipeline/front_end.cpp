@@ -153,7 +153,21 @@ std::vector<Segment> FrontEnd::hsvSegments(const RgbdFrame& frame) const
 
 std::vector<Segment> FrontEnd::colourFreeSegments(const RgbdFrame& frame, const cv::Mat& excluded) const
 {
-  return colour_free_segmenter_.segmentPlanes(frame, excluded, nullptr, !params_.skip_supporting_plane).segments;
+  return colour_free_segmenter_
+      .segmentPlanes(frame, excluded, nullptr, !params_.skip_supporting_plane, givenSupportPlane(frame))
+      .segments;
+}
+
+std::optional<Eigen::Vector4d> FrontEnd::givenSupportPlane(const RgbdFrame& frame) const
+{
+  // The same precedence as frameContext(): the frame's own plane first.
+  UpDirection given;
+  if (frame.support_in_camera) given = givenSupport(*frame.support_in_camera);
+  if (!given.support_given) given = givenSupport(params_.roi.support_plane);
+  if (!given.support_given) return std::nullopt;
+  Eigen::Vector4d plane;
+  plane << given.support_normal, given.support_offset_m;
+  return plane;
 }
 
 void FrontEnd::filterSegments(const RgbdFrame& frame, const std::vector<Segment>& segments,

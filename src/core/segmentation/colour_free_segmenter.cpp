@@ -6,6 +6,7 @@
 
 #include <opencv2/core/utility.hpp>
 
+#include "brick_pose/common/angles.h"
 #include "brick_pose/common/elapsed.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/common/statistics.h"
@@ -134,9 +135,15 @@ std::vector<Segment> ColourFreeSegmenter::segment(const RgbdFrame& frame, const 
 }
 
 PlanarSegments ColourFreeSegmenter::segmentPlanes(const RgbdFrame& frame, const cv::Mat& excluded,
-                                                  ColourFreeTimings* timings, bool with_supporting) const
+                                                  ColourFreeTimings* timings, bool with_supporting,
+                                                  const std::optional<Eigen::Vector4d>& given_support) const
 {
   PlanarSegments result;
+  if (given_support && !(given_support->allFinite() && given_support->head<3>().norm() > 1e-9))
+    throw InputError("colour-free segmenter: the given support plane must be finite, with a non-zero normal");
+  const std::optional<Eigen::Vector4d> support =
+      given_support ? std::optional<Eigen::Vector4d>(*given_support / given_support->head<3>().norm())
+                    : std::nullopt;
   // No face fits an image smaller than the smallest segment.
   if (frame.depth_m.rows * frame.depth_m.cols < params_.min_area_px) return result;
   ColourFreeTimings local;
@@ -157,7 +164,11 @@ PlanarSegments ColourFreeSegmenter::segmentPlanes(const RgbdFrame& frame, const 
   const RegionDropper findSupporting = [&](const std::vector<int>& region_area_px) {
     std::vector<int> area_px(region_moments.size(), 0);
     std::copy_n(region_area_px.begin(), std::min(region_area_px.size(), area_px.size()), area_px.begin());
-    supporting = supportingRegions(region_planes, area_px, frame.width_px() * frame.height_px());
+    if (support)
+      for (std::size_t r = 0; r < region_planes.size(); ++r)
+        supporting[r] = region_planes[r].valid && area_px[r] > 0 && onGivenSupport(region_planes[r], *support);
+    else
+      supporting = supportingRegions(region_planes, area_px, frame.width_px() * frame.height_px());
     return with_supporting ? std::vector<bool>() : supporting;
   };
   std::vector<int> segment_regions;
@@ -171,6 +182,13 @@ PlanarSegments ColourFreeSegmenter::segmentPlanes(const RgbdFrame& frame, const 
   }
   clock.stop(t.segments_ms, t.segments_cpu_ms);
   return result;
+}
+
+bool ColourFreeSegmenter::onGivenSupport(const MomentPlane& plane, const Eigen::Vector4d& support) const
+{
+  const Eigen::Vector3d up = support.head<3>();
+  return std::abs(up.dot(plane.centroid_m) + support[3]) <= params_.support_margin_m &&
+         std::abs(up.dot(plane.normal)) >= std::cos(params_.clustering.min_angle_deg * kDegToRad);
 }
 
 std::vector<bool> ColourFreeSegmenter::supportingRegions(const std::vector<MomentPlane>& planes,
