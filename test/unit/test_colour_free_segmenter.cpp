@@ -63,6 +63,18 @@ RgbdFrame renderFrame(const PinholeCamera& camera, const std::function<double(in
   return makeRgbdFrame(rgb, depth_m, camera, {});
 }
 
+/// The face of the raised-face scenes, in pixels.
+const cv::Rect kRaisedFace(200, 150, 220, 130);
+
+/// A VGA frame of the ground 1 m away, facing the camera, with kRaisedFace
+/// 0.25 m above it (a depth step all round), D415-like noise.
+RgbdFrame raisedFaceOverGround()
+{
+  return renderFrame(
+      test::PlateScene::vgaCamera(525.0), [](int u, int v) { return kRaisedFace.contains({u, v}) ? 0.75 : 1.0; },
+      0.0015, 3);
+}
+
 /// Full-image mask of a segment.
 cv::Mat placed(const Segment& segment, cv::Size size)
 {
@@ -192,10 +204,8 @@ TEST(ColourFreeSegmenter, OneTiltedPlaneIsOneSegment)
 TEST(ColourFreeSegmenter, RaisedFaceAndGroundAreTwoSegmentsWithExactBorders)
 {
   // A face 0.25 m above the ground, seen from above: a depth step all round.
-  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
-  const cv::Rect face(200, 150, 220, 130);
-  const RgbdFrame frame = renderFrame(
-      camera, [&](int u, int v) { return face.contains({u, v}) ? 0.75 : 1.0; }, 0.0015, 3);
+  const cv::Rect face = kRaisedFace;
+  const RgbdFrame frame = raisedFaceOverGround();
   const std::vector<Segment> segments = ColourFreeSegmenter().segment(frame);
   ASSERT_EQ(segments.size(), 2u);
   cv::Mat truth = cv::Mat::zeros(480, 640, CV_8UC1);
@@ -210,10 +220,7 @@ TEST(ColourFreeSegmenter, RaisedFaceAndGroundAreTwoSegmentsWithExactBorders)
 
 TEST(ColourFreeSegmenter, SupportingPlaneIsMarkedAndLeftOutOnRequest)
 {
-  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
-  const cv::Rect face(200, 150, 220, 130);
-  const RgbdFrame frame = renderFrame(
-      camera, [&](int u, int v) { return face.contains({u, v}) ? 0.75 : 1.0; }, 0.0015, 3);
+  const RgbdFrame frame = raisedFaceOverGround();
   const ColourFreeSegmenter segmenter;
   const PlanarSegments all = segmenter.segmentPlanes(frame);
   ASSERT_EQ(all.segments.size(), 2u);
@@ -364,10 +371,8 @@ TEST(ColourFreeSegmenter, DegenerateFramesGiveNoSegmentAndNoCrash)
 
 TEST(ColourFreeSegmenter, ExcludedPixelsAreLeftOut)
 {
-  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
-  const cv::Rect face(200, 150, 220, 130);
-  const RgbdFrame frame = renderFrame(
-      camera, [&](int u, int v) { return face.contains({u, v}) ? 0.75 : 1.0; }, 0.0015, 3);
+  const cv::Rect face = kRaisedFace;
+  const RgbdFrame frame = raisedFaceOverGround();
   cv::Mat excluded = cv::Mat::zeros(480, 640, CV_8UC1);
   excluded(face).setTo(255);
   const std::vector<Segment> segments = ColourFreeSegmenter().segment(frame, excluded);
@@ -402,10 +407,8 @@ TEST(ColourFreeSegmenter, WithTheSupportGivenTheGroundInViewIsTheSupportingPlane
   // The ground and a face 25 cm up: the ground, on the given plane, is the
   // supporting plane and the face is not; a normal of any length is the
   // same plane, and a plane without a normal is an error.
-  const PinholeCamera camera = test::PlateScene::vgaCamera(525.0);
-  const cv::Rect face(200, 150, 220, 130);
-  const RgbdFrame frame = renderFrame(
-      camera, [&](int u, int v) { return face.contains({u, v}) ? 0.75 : 1.0; }, 0.0015, 3);
+  const cv::Rect face = kRaisedFace;
+  const RgbdFrame frame = raisedFaceOverGround();
   const ColourFreeSegmenter segmenter;
   const PlanarSegments all = segmenter.segmentPlanes(frame, cv::Mat(), nullptr, true, Eigen::Vector4d(0, 0, -2, 2));
   ASSERT_EQ(all.segments.size(), 2u);

@@ -134,9 +134,10 @@ private:
   /// and their regions.
   CellPlanes labelPlanes(const RgbdFrame& frame, const cv::Mat& excluded, cv::Mat& labels,
                          ColourFreeTimings& timings) const;
-  /// Whether `plane` lies on the unit-normal plane `support`: within
-  /// support_margin_m of it and parallel within min_angle_deg.
-  bool onGivenSupport(const MomentPlane& plane, const Eigen::Vector4d& support) const;
+  /// Whether the region of `plane` and `area_px` (> 0) lies on the
+  /// unit-normal plane `support` (n . x + d): within support_margin_m of it
+  /// and parallel within min_angle_deg. A given support, or the one found.
+  bool onSupport(const MomentPlane& plane, int area_px, const Eigen::Vector4d& support) const;
   /// Per region: whether it is the supporting plane (see PlanarSegments).
   std::vector<bool> supportingRegions(const std::vector<MomentPlane>& planes, const std::vector<int>& area_px,
                                       int image_area_px) const;

@@ -166,7 +166,7 @@ PlanarSegments ColourFreeSegmenter::segmentPlanes(const RgbdFrame& frame, const 
     std::copy_n(region_area_px.begin(), std::min(region_area_px.size(), area_px.size()), area_px.begin());
     if (support)
       for (std::size_t r = 0; r < region_planes.size(); ++r)
-        supporting[r] = region_planes[r].valid && area_px[r] > 0 && onGivenSupport(region_planes[r], *support);
+        supporting[r] = onSupport(region_planes[r], area_px[r], *support);
     else
       supporting = supportingRegions(region_planes, area_px, frame.width_px() * frame.height_px());
     return with_supporting ? std::vector<bool>() : supporting;
@@ -184,10 +184,10 @@ PlanarSegments ColourFreeSegmenter::segmentPlanes(const RgbdFrame& frame, const 
   return result;
 }
 
-bool ColourFreeSegmenter::onGivenSupport(const MomentPlane& plane, const Eigen::Vector4d& support) const
+bool ColourFreeSegmenter::onSupport(const MomentPlane& plane, int area_px, const Eigen::Vector4d& support) const
 {
   const Eigen::Vector3d up = support.head<3>();
-  return std::abs(up.dot(plane.centroid_m) + support[3]) <= params_.support_margin_m &&
+  return plane.valid && area_px > 0 && std::abs(up.dot(plane.centroid_m) + support[3]) <= params_.support_margin_m &&
          std::abs(up.dot(plane.normal)) >= std::cos(params_.clustering.min_angle_deg * kDegToRad);
 }
 
@@ -213,12 +213,13 @@ std::vector<bool> ColourFreeSegmenter::supportingRegions(const std::vector<Momen
     if (nothing_below && something_on) best = static_cast<int>(r);
   }
   if (best < 0) return supporting;
-  // Pieces of the same support the clustering left apart.
-  const double min_cos = std::cos(params_.clustering.min_angle_deg * 3.14159265358979323846 / 180.0);
+  // Pieces of the same support the clustering left apart. (Both normals
+  // face the camera: parallel planes' normals agree in sign.)
+  const MomentPlane& base = planes[best];
+  Eigen::Vector4d support;
+  support << base.normal, -base.normal.dot(base.centroid_m);
   for (std::size_t r = 0; r < planes.size(); ++r)
-    supporting[r] = static_cast<int>(r) == best ||
-                    (planes[r].valid && area_px[r] > 0 && std::abs(above(planes[best], planes[r])) <= margin_m &&
-                     planes[r].normal.dot(planes[best].normal) >= min_cos);
+    supporting[r] = static_cast<int>(r) == best || onSupport(planes[r], area_px[r], support);
   return supporting;
 }
 
