@@ -17,6 +17,8 @@
 #include "brick_pose/frame/frame_builder.h"
 #include "brick_pose/pipeline/front_end.h"
 #include "brick_pose/pipeline/pipeline_config.h"
+#include "brick_pose/segmentation/cell_clustering.h"
+#include "brick_pose/segmentation/cell_grid.h"
 #include "brick_pose/segmentation/colour_free_segmenter.h"
 #include "brick_pose/segmentation/depth_noise.h"
 #include "brick_pose/segmentation/plane_moments.h"
@@ -417,6 +419,78 @@ TEST(ColourFreeSegmenter, WithTheSupportGivenTheGroundInViewIsTheSupportingPlane
   EXPECT_EQ(all.segments[1].bounding_box_px, face);
   EXPECT_THROW(segmenter.segmentPlanes(frame, cv::Mat(), nullptr, true, Eigen::Vector4d(0, 0, 0, 1)), InputError);
   EXPECT_THROW(segmenter.segmentPlanes(frame, cv::Mat(), nullptr, true, Eigen::Vector4d(0, 0, NAN, 1)), InputError);
+}
+
+/// The segments' pixels and supporting flags of `frame`, the support found
+/// and then given (groundAtOneMetre()), are the same; the given support's
+/// inside started the clustering as one node of at least `min_seeded` cells.
+void expectSameSegmentsWithTheSupportGiven(const RgbdFrame& frame, int min_seeded)
+{
+  const ColourFreeSegmenter segmenter;
+  ColourFreeTimings found_timings, given_timings;
+  const PlanarSegments found = segmenter.segmentPlanes(frame, cv::Mat(), &found_timings, true);
+  const PlanarSegments given = segmenter.segmentPlanes(frame, cv::Mat(), &given_timings, true, groundAtOneMetre());
+  EXPECT_EQ(found_timings.seeded_cells, 0);
+  EXPECT_GE(given_timings.seeded_cells, min_seeded);
+  ASSERT_EQ(given.segments.size(), found.segments.size());
+  for (std::size_t k = 0; k < found.segments.size(); ++k)
+  {
+    EXPECT_EQ(given.segments[k].pixel_indices, found.segments[k].pixel_indices) << "segment " << k;
+    EXPECT_EQ(given.supporting[k], found.supporting[k]) << "segment " << k;
+  }
+}
+
+TEST(ColourFreeSegmenter, WithTheSupportGivenItsInsideStartsAsOneNodeAndTheSegmentsStayTheSame)
+{
+  // 80 x 60 cells of 8 px; the face covers about 28 x 17 of them, and the
+  // cells at its border (a depth step) and beside it are clustered as before.
+  const RgbdFrame frame = raisedFaceOverGround();
+  expectSameSegmentsWithTheSupportGiven(frame, static_cast<int>(0.9 * (80 * 60 - 31 * 20)));
+}
+
+TEST(ColourFreeSegmenter, WithTheSupportGivenAFaceTwoCentimetresUpIsNotSeededIntoIt)
+{
+  // Beside the raised face, a face 2 cm above the ground: within
+  // support_margin_m (3 cm) of it, its rows of cells meeting the ground's
+  // with no cell across the step. It is not seeded into the ground's node
+  // (nor would the ground be seeded with it): it stays a plane of its own.
+  const cv::Rect low(450, 150, 160, 130);
+  const RgbdFrame frame = renderFrame(
+      test::PlateScene::vgaCamera(525.0),
+      [&](int u, int v) { return kRaisedFace.contains({u, v}) ? 0.75 : low.contains({u, v}) ? 0.98 : 1.0; }, 0.0015,
+      5);
+  expectSameSegmentsWithTheSupportGiven(frame, static_cast<int>(0.9 * (80 * 60 - 31 * 20 - 23 * 20)));
+}
+
+TEST(CellClustering, ASeedGroupNotOnOnePlaneStartsAsSingleCells)
+{
+  // Every cell seeded: the group spans the ground and a face 2 cm above it
+  // (no cell across the step), so it does not start as one node, and the
+  // planes are the clustering's without seeds.
+  const cv::Rect low(200, 160, 240, 160);
+  const RgbdFrame frame = renderFrame(
+      test::PlateScene::vgaCamera(525.0), [&](int u, int v) { return low.contains({u, v}) ? 0.98 : 1.0; }, 0.0015, 9);
+  const PixelRays rays(frame.camera);
+  const CellGrid grid(frame, rays, 8, cv::Mat(), false);
+  const std::vector<MomentPlane> cell_planes = fitCellPlanes(grid, CellClusteringParams().min_cell_fill);
+  DepthNoise noise;
+  noise.sigma_at_1m_m = 0.0015;
+  const CellClustering clustering{CellClusteringParams()};
+  int seeded = -1;
+  const CellPlanes plain = clustering.cluster(grid, cell_planes, noise);
+  const CellPlanes all_seeded =
+      clustering.cluster(grid, cell_planes, noise, std::vector<std::uint8_t>(grid.size(), 1), &seeded);
+  EXPECT_EQ(seeded, 0);
+  EXPECT_EQ(all_seeded.cell_labels, plain.cell_labels);
+  ASSERT_EQ(plain.planes.size(), 2u) << "the ground and the face";
+  // The ground's cells alone, seeded: one node from the start, the same planes.
+  std::vector<std::uint8_t> ground(grid.size(), 0);
+  for (int cell = 0; cell < grid.size(); ++cell)
+    ground[cell] = std::abs(grid.moments(cell).mean().z() - 1.0) < 0.01 ? 1 : 0;
+  const CellPlanes ground_seeded = clustering.cluster(grid, cell_planes, noise, ground, &seeded);
+  EXPECT_GT(seeded, 0.8 * (80 * 60 - 30 * 20));
+  EXPECT_EQ(ground_seeded.cell_labels, plain.cell_labels);
+  EXPECT_THROW(clustering.cluster(grid, cell_planes, noise, std::vector<std::uint8_t>(3, 1)), InputError);
 }
 
 TEST(ColourFreeSegmenter, ParametersAreValidatedByName)

@@ -26,6 +26,7 @@
 // alone would let a small node 2 cm off a large plane merge: it hardly
 // raises the large node's MSE.
 
+#include <cstdint>
 #include <vector>
 
 #include "brick_pose/segmentation/cell_grid.h"
@@ -128,7 +129,17 @@ public:
 
   /// Clusters the cells of `grid` whose plane (`cell_planes`, from
   /// fitCellPlanes) is valid and flat within `noise`.
-  CellPlanes cluster(const CellGrid& grid, const std::vector<MomentPlane>& cell_planes, const DepthNoise& noise) const;
+  ///
+  /// Cells non-zero in `seeds` (empty, or one per cell) known to lie on one
+  /// surface, e.g. the inside of a given support, start merged: each
+  /// 4-connected group of them that are nodes starts as one node when every
+  /// one of its cells liesOn() it (else they start alone), and
+  /// the clustering grows it from there as it grows any node. On a pile
+  /// seen from above the ground is most of the cells, and merging it cell
+  /// by cell was most of the clustering's time. Returns in `seeded` (when
+  /// given) how many cells started merged.
+  CellPlanes cluster(const CellGrid& grid, const std::vector<MomentPlane>& cell_planes, const DepthNoise& noise,
+                     const std::vector<std::uint8_t>& seeds = {}, int* seeded = nullptr) const;
 
   /// Whether a cell is a node: its plane is valid, seen less obliquely than
   /// max_incidence_deg, flat within the noise and without a depth step.
@@ -142,6 +153,12 @@ public:
   /// success `merged_mse_m2` receives an upper bound of the merged MSE (the
   /// MSE of the union about the larger node's plane).
   bool compatible(const PlaneNode& a, const PlaneNode& b, const DepthNoise& noise, double& merged_mse_m2) const;
+
+  /// Whether the points of `small` lie on the plane of `large` within the
+  /// noise: compatible()'s scatter and offset tests, without its test of
+  /// the angle between their normals (a single cell's normal far away is
+  /// mostly noise).
+  bool liesOn(const PlaneNode& large, const PlaneNode& small, const DepthNoise& noise) const;
 
   /// Whether planes p and q continue each other across their seam, given
   /// the moments of the seam cells on either side (see the file comment).
@@ -161,6 +178,10 @@ public:
 private:
   /// Largest angle between two normals whose combined uncertainty is `normal_sigma_rad`.
   double maxAngleRad(double normal_sigma_rad) const;
+  /// compatible()'s scatter of `small` about the plane of `large` and its
+  /// offset from it; whether both are within the noise.
+  bool withinNoise(const PlaneNode& large, const PlaneNode& small, const DepthNoise& noise, double& spread_m2,
+                   double& offset_m) const;
   /// Groups planes that continue each other into regions.
   void groupContinuousPlanes(const CellGrid& grid, const DepthNoise& noise, CellPlanes& result) const;
 

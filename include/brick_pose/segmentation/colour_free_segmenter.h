@@ -77,6 +77,7 @@ struct ColourFreeTimings
   double noise_at_1m_m = 0.0;  ///< The noise coefficient used.
   int planes = 0;              ///< Planes found on the cells.
   int regions = 0;             ///< Regions they form, before the area threshold.
+  int seeded_cells = 0;        ///< Cells inside a given support, clustered as one node from the start.
 };
 
 /// Segments with their planes and which of them are the supporting plane.
@@ -114,6 +115,8 @@ public:
   /// is the regions lying on it (within support_margin_m, parallel within
   /// the clustering's min_angle_deg) and no other: a layer's top filling a
   /// close view, with a lower one beside it, is never taken for the support.
+  /// The cells inside it start the clustering as one node
+  /// (CellClustering::cluster's seeds; timings->seeded_cells).
   PlanarSegments segmentPlanes(const RgbdFrame& frame, const cv::Mat& excluded = cv::Mat(),
                                ColourFreeTimings* timings = nullptr, bool with_supporting = true,
                                const std::optional<Eigen::Vector4d>& given_support = std::nullopt) const;
@@ -133,7 +136,22 @@ private:
   /// Plane index per pixel (-1 none) into `labels`; returns the planes
   /// and their regions.
   CellPlanes labelPlanes(const RgbdFrame& frame, const cv::Mat& excluded, cv::Mat& labels,
-                         ColourFreeTimings& timings) const;
+                         ColourFreeTimings& timings,
+                         const std::optional<Eigen::Vector4d>& support = std::nullopt) const;
+  /// Per cell, 1 for those inside the unit-normal plane `support` (n . x +
+  /// d): they and their eight neighbours lie on it (nodes by
+  /// CellClustering::planarCell, within support_margin_m of it, flat about
+  /// its normal, and on one plane: onOnePlane). The clustering starts them
+  /// as one node.
+  std::vector<std::uint8_t> innerSupportCells(const CellGrid& grid, const std::vector<MomentPlane>& cell_planes,
+                                              const DepthNoise& noise, const Eigen::Vector4d& support) const;
+  /// Of the cells non-zero in `near` (near `support`), those within the
+  /// `noise` of the plane of those at their median height above it.
+  static std::vector<std::uint8_t> onOnePlane(const CellGrid& grid, const std::vector<std::uint8_t>& near,
+                                              const Eigen::Vector4d& support, const DepthNoise& noise);
+  /// The cells of `cells` (cols x rows, row-major) whose eight neighbours
+  /// in the grid are in it too.
+  static std::vector<std::uint8_t> insideOf(const std::vector<std::uint8_t>& cells, int cols, int rows);
   /// Whether the region of `plane` and `area_px` (> 0) lies on the
   /// unit-normal plane `support` (n . x + d): within support_margin_m of it
   /// and parallel within min_angle_deg. A given support, or the one found.

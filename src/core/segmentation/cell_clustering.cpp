@@ -100,6 +100,61 @@ struct NeighbourLinks
   }
 };
 
+/// Starts each 4-connected group of the active cells non-zero in `seeds`
+/// as one node (rooted at its first cell), when every one of its cells
+/// lies on the group's plane within the noise; returns how many cells
+/// started so.
+int mergeSeedGroups(const CellClustering& clustering, const CellGrid& grid, const std::vector<std::uint8_t>& seeds,
+                    const DepthNoise& noise, std::vector<Node>& nodes, std::vector<int>& parent)
+{
+  const int cols = grid.cols(), rows = grid.rows(), count = grid.size();
+  std::vector<std::uint8_t> visited(static_cast<std::size_t>(count), 0);
+  std::vector<int> group, stack;
+  int seeded = 0;
+  for (int start = 0; start < count; ++start)
+  {
+    if (!seeds[start] || visited[start] || nodes[start].state != NodeState::kActive) continue;
+    group.clear();
+    stack.assign(1, start);
+    visited[start] = 1;
+    PlaneMoments moments;
+    while (!stack.empty())
+    {
+      const int cell = stack.back();
+      stack.pop_back();
+      group.push_back(cell);
+      moments += grid.moments(cell);
+      const int col = cell % cols, row = cell / cols;
+      for (const int next : {col > 0 ? cell - 1 : -1, col + 1 < cols ? cell + 1 : -1, row > 0 ? cell - cols : -1,
+                             row + 1 < rows ? cell + cols : -1})
+        if (next >= 0 && seeds[next] && !visited[next] && nodes[next].state == NodeState::kActive)
+        {
+          visited[next] = 1;
+          stack.push_back(next);
+        }
+    }
+    if (group.size() < 2) continue;
+    const MomentPlane plane = fitMomentPlane(moments);
+    if (!plane.valid) continue;
+    const PlaneNode merged(moments, plane, noise);
+    if (!std::all_of(group.begin(), group.end(),
+                     [&](int cell) { return clustering.liesOn(merged, nodes[cell].stats, noise); }))
+      continue;
+    Node& root = nodes[start];
+    root.stats = merged;
+    root.fitted_count = moments.count;
+    root.cells = static_cast<int>(group.size());
+    for (const int cell : group)
+      if (cell != start)
+      {
+        parent[cell] = start;
+        nodes[cell].state = NodeState::kMerged;
+      }
+    seeded += root.cells;
+  }
+  return seeded;
+}
+
 struct HeapEntry
 {
   double mse_m2;
@@ -182,6 +237,30 @@ bool CellClustering::depthStep(const CellGrid& grid, int cell, const MomentPlane
   return grid.maxStepU(cell) > step_u_m + step_allowance_m || grid.maxStepV(cell) > step_v_m + step_allowance_m;
 }
 
+bool CellClustering::withinNoise(const PlaneNode& large, const PlaneNode& small, const DepthNoise& noise,
+                                 double& spread_m2, double& offset_m) const
+{
+  const Eigen::Vector3d& n = large.plane.normal;
+  // Cheapest test first: most pairs that fail, fail the scatter test.
+  spread_m2 = n.dot(small.covariance * n);
+  const double plane_floor2 = params_.plane_floor_m * params_.plane_floor_m;
+  if (spread_m2 > params_.spread_sigma_factor * params_.spread_sigma_factor * small.noise_variance_m2 + plane_floor2)
+    return false;
+
+  offset_m = large.plane.signedDistance(small.mean);
+  const double lever2_m2 = (small.mean - large.plane.centroid_m).squaredNorm();
+  const double offset_sigma_m = std::sqrt(small.noise_variance_m2 / noise.samples(small.moments.count) +
+                                          large.noise_variance_m2 / noise.samples(large.moments.count) +
+                                          large.normal_sigma_rad * large.normal_sigma_rad * lever2_m2);
+  return std::abs(offset_m) <= params_.offset_sigma_factor * offset_sigma_m + params_.offset_floor_m;
+}
+
+bool CellClustering::liesOn(const PlaneNode& large, const PlaneNode& small, const DepthNoise& noise) const
+{
+  double spread_m2 = 0.0, offset_m = 0.0;
+  return withinNoise(large, small, noise, spread_m2, offset_m);
+}
+
 bool CellClustering::compatible(const PlaneNode& a, const PlaneNode& b, const DepthNoise& noise,
                                 double& merged_mse_m2) const
 {
@@ -189,19 +268,9 @@ bool CellClustering::compatible(const PlaneNode& a, const PlaneNode& b, const De
   const PlaneNode& large = a_larger ? a : b;
   const PlaneNode& small = a_larger ? b : a;
   const Eigen::Vector3d& n = large.plane.normal;
-
-  // Cheapest tests first: most pairs that fail, fail the scatter test.
-  const double spread_m2 = n.dot(small.covariance * n);
+  double spread_m2 = 0.0, offset_m = 0.0;
+  if (!withinNoise(large, small, noise, spread_m2, offset_m)) return false;
   const double plane_floor2 = params_.plane_floor_m * params_.plane_floor_m;
-  if (spread_m2 > params_.spread_sigma_factor * params_.spread_sigma_factor * small.noise_variance_m2 + plane_floor2)
-    return false;
-
-  const double offset_m = large.plane.signedDistance(small.mean);
-  const double lever2_m2 = (small.mean - large.plane.centroid_m).squaredNorm();
-  const double offset_sigma_m = std::sqrt(small.noise_variance_m2 / noise.samples(small.moments.count) +
-                                          large.noise_variance_m2 / noise.samples(large.moments.count) +
-                                          large.normal_sigma_rad * large.normal_sigma_rad * lever2_m2);
-  if (std::abs(offset_m) > params_.offset_sigma_factor * offset_sigma_m + params_.offset_floor_m) return false;
 
   const double total = large.moments.count + small.moments.count;
   merged_mse_m2 =
@@ -223,8 +292,10 @@ double CellClustering::maxAngleRad(double normal_sigma_rad) const
 }
 
 CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<MomentPlane>& cell_planes,
-                                   const DepthNoise& noise) const
+                                   const DepthNoise& noise, const std::vector<std::uint8_t>& seeds, int* seeded) const
 {
+  if (!seeds.empty() && static_cast<int>(seeds.size()) != grid.size())
+    throw InputError("cell clustering: seeds must be empty or one per cell");
   const int cols = grid.cols(), rows = grid.rows(), count = grid.size();
   // Working storage kept between frames (thread_local: the segmenter is
   // const and may run in several threads).
@@ -254,18 +325,23 @@ CellPlanes CellClustering::cluster(const CellGrid& grid, const std::vector<Momen
     node.fitted_count = node.stats.moments.count;
     node.state = NodeState::kActive;
   }
+  const int seeded_cells = seeds.empty() ? 0 : mergeSeedGroups(*this, grid, seeds, noise, nodes, parent);
+  if (seeded) *seeded = seeded_cells;
+  // A seed group's node links to the neighbours of all its cells (before
+  // any merge a merged node is a seed group's member).
   for (int i = 0; i < count; ++i)
   {
-    if (nodes[i].state != NodeState::kActive) continue;
+    if (nodes[i].state == NodeState::kNone) continue;
+    const int owner = parent[i];
     const int col = i % cols, row = i / cols;
     auto link = [&](int other) {
-      if (nodes[other].state == NodeState::kActive) links.append(nodes[i], other);
+      if (nodes[other].state != NodeState::kNone && parent[other] != owner) links.append(nodes[owner], other);
     };
     if (col > 0) link(i - 1);
     if (col + 1 < cols) link(i + 1);
     if (row > 0) link(i - cols);
     if (row + 1 < rows) link(i + cols);
-    push({nodes[i].stats.plane.mse_m2, i, 0});
+    if (owner == i) push({nodes[i].stats.plane.mse_m2, i, 0});
   }
 
   thread_local std::vector<unsigned> seen;
