@@ -462,6 +462,36 @@ TEST(ColourFreeSegmenter, WithTheSupportGivenAFaceTwoCentimetresUpIsNotSeededInt
   expectSameSegmentsWithTheSupportGiven(frame, static_cast<int>(0.9 * (80 * 60 - 31 * 20 - 23 * 20)));
 }
 
+TEST(ColourFreeSegmenter, ALikelyPlaneSeedsTheClusteringAndDecidesNothing)
+{
+  // The raised face over the ground with the ground passed as the likely
+  // plane (what FrontEnd's RANSAC finds when no support is given): its
+  // inside is seeded, and the segments and the supporting plane are those
+  // found without it.
+  const RgbdFrame frame = raisedFaceOverGround();
+  const ColourFreeSegmenter segmenter;
+  ColourFreeTimings plain_timings, likely_timings;
+  const PlanarSegments plain = segmenter.segmentPlanes(frame, cv::Mat(), &plain_timings, true);
+  const PlanarSegments likely =
+      segmenter.segmentPlanes(frame, cv::Mat(), &likely_timings, true, std::nullopt, groundAtOneMetre());
+  EXPECT_EQ(plain_timings.seeded_cells, 0);
+  EXPECT_GE(likely_timings.seeded_cells, static_cast<int>(0.9 * (80 * 60 - 31 * 20)));
+  ASSERT_EQ(likely.segments.size(), plain.segments.size());
+  for (std::size_t k = 0; k < plain.segments.size(); ++k)
+  {
+    EXPECT_EQ(likely.segments[k].pixel_indices, plain.segments[k].pixel_indices) << "segment " << k;
+    EXPECT_EQ(likely.supporting[k], plain.supporting[k]) << "segment " << k;
+  }
+  // Not a given support: in a close view of two tops with the ground out
+  // of view, the lower top is still taken for the support and left out.
+  const RgbdFrame close = renderFrame(
+      test::PlateScene::vgaCamera(525.0), [&](int u, int) { return u < 400 ? 0.9 : 0.8; }, 0.0015, 7);
+  EXPECT_EQ(segmenter.segmentPlanes(close, cv::Mat(), nullptr, false, std::nullopt, groundAtOneMetre()).segments.size(),
+            1u);
+  EXPECT_THROW(segmenter.segmentPlanes(frame, cv::Mat(), nullptr, true, std::nullopt, Eigen::Vector4d(0, 0, 0, 1)),
+               InputError);
+}
+
 TEST(CellClustering, ASeedGroupNotOnOnePlaneStartsAsSingleCells)
 {
   // Every cell seeded: the group spans the ground and a face 2 cm above it

@@ -117,9 +117,15 @@ public:
   /// close view, with a lower one beside it, is never taken for the support.
   /// The cells inside it start the clustering as one node
   /// (CellClustering::cluster's seeds; timings->seeded_cells).
+  ///
+  /// Without a given support, a `likely_plane` (the same form; e.g. the
+  /// dominant plane a quick RANSAC found) only seeds the clustering so: it
+  /// makes it faster where much of the view lies on it, and decides nothing
+  /// (the supporting plane is then found as without it).
   PlanarSegments segmentPlanes(const RgbdFrame& frame, const cv::Mat& excluded = cv::Mat(),
                                ColourFreeTimings* timings = nullptr, bool with_supporting = true,
-                               const std::optional<Eigen::Vector4d>& given_support = std::nullopt) const;
+                               const std::optional<Eigen::Vector4d>& given_support = std::nullopt,
+                               const std::optional<Eigen::Vector4d>& likely_plane = std::nullopt) const;
 
   /// The planar region of each pixel (CV_32SC1, -1 none) before the
   /// regions are cut into connected segments, for tests and tools.
@@ -135,9 +141,11 @@ private:
   double measuredNoiseAt1m(const CellGrid& grid) const;
   /// Plane index per pixel (-1 none) into `labels`; returns the planes
   /// and their regions.
+  /// With `seeded` (a unit-normal plane), its inside starts the clustering
+  /// as one node (innerSupportCells).
   CellPlanes labelPlanes(const RgbdFrame& frame, const cv::Mat& excluded, cv::Mat& labels,
                          ColourFreeTimings& timings,
-                         const std::optional<Eigen::Vector4d>& support = std::nullopt) const;
+                         const std::optional<Eigen::Vector4d>& seeded = std::nullopt) const;
   /// Per cell, 1 for those inside the unit-normal plane `support` (n . x +
   /// d): they and their eight neighbours lie on it (nodes by
   /// CellClustering::planarCell, within support_margin_m of it, flat about

@@ -153,9 +153,23 @@ std::vector<Segment> FrontEnd::hsvSegments(const RgbdFrame& frame) const
 
 std::vector<Segment> FrontEnd::colourFreeSegments(const RgbdFrame& frame, const cv::Mat& excluded) const
 {
+  const std::optional<Eigen::Vector4d> given = givenSupportPlane(frame);
   return colour_free_segmenter_
-      .segmentPlanes(frame, excluded, nullptr, !params_.skip_supporting_plane, givenSupportPlane(frame))
+      .segmentPlanes(frame, excluded, nullptr, !params_.skip_supporting_plane, given,
+                     given ? std::nullopt : dominantPlane(frame))
       .segments;
+}
+
+std::optional<Eigen::Vector4d> FrontEnd::dominantPlane(const RgbdFrame& frame) const
+{
+  // The RANSAC frameContext() runs when no support is given: a quick plane
+  // the colour-free clustering may start from (it is not taken for the
+  // support there).
+  const UpDirection dominant = estimateSupportPlaneUp(frame, params_.up);
+  if (!dominant.has_support_plane) return std::nullopt;
+  Eigen::Vector4d plane;
+  plane << dominant.support_normal, dominant.support_offset_m;
+  return plane;
 }
 
 std::optional<Eigen::Vector4d> FrontEnd::givenSupportPlane(const RgbdFrame& frame) const

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <string>
 
 #include <opencv2/core/utility.hpp>
 
@@ -81,7 +82,7 @@ int ColourFreeSegmenter::cellPx(int width_px) const
 }
 
 CellPlanes ColourFreeSegmenter::labelPlanes(const RgbdFrame& frame, const cv::Mat& excluded, cv::Mat& labels,
-                                            ColourFreeTimings& t, const std::optional<Eigen::Vector4d>& support) const
+                                            ColourFreeTimings& t, const std::optional<Eigen::Vector4d>& seeded) const
 {
   if (!excluded.empty() && (excluded.type() != CV_8UC1 || excluded.size() != frame.depth_m.size()))
     throw InputError("colour-free segmenter: the excluded mask must be CV_8UC1 of the frame's size");
@@ -100,11 +101,11 @@ CellPlanes ColourFreeSegmenter::labelPlanes(const RgbdFrame& frame, const cv::Ma
   clock.stop(t.cells_ms, t.cells_cpu_ms);
 
   clock = StageClock();
-  // Given the support, its inside starts the clustering as one node: on a
-  // pile seen from above it is most of the cells, and merging them one by
-  // one was most of the clustering's time.
+  // The support's inside (or the likely plane's) starts the clustering as
+  // one node: on a pile seen from above it is most of the cells, and
+  // merging them one by one was most of the clustering's time.
   const std::vector<std::uint8_t> seeds =
-      support ? innerSupportCells(grid, cell_planes, noise, *support) : std::vector<std::uint8_t>();
+      seeded ? innerSupportCells(grid, cell_planes, noise, *seeded) : std::vector<std::uint8_t>();
   CellPlanes planes = clustering_.cluster(grid, cell_planes, noise, seeds, &t.seeded_cells);
   t.planes = static_cast<int>(planes.planes.size());
   clock.stop(t.clustering_ms, t.clustering_cpu_ms);
@@ -145,14 +146,18 @@ std::vector<Segment> ColourFreeSegmenter::segment(const RgbdFrame& frame, const 
 
 PlanarSegments ColourFreeSegmenter::segmentPlanes(const RgbdFrame& frame, const cv::Mat& excluded,
                                                   ColourFreeTimings* timings, bool with_supporting,
-                                                  const std::optional<Eigen::Vector4d>& given_support) const
+                                                  const std::optional<Eigen::Vector4d>& given_support,
+                                                  const std::optional<Eigen::Vector4d>& likely_plane) const
 {
   PlanarSegments result;
-  if (given_support && !(given_support->allFinite() && given_support->head<3>().norm() > 1e-9))
-    throw InputError("colour-free segmenter: the given support plane must be finite, with a non-zero normal");
-  const std::optional<Eigen::Vector4d> support =
-      given_support ? std::optional<Eigen::Vector4d>(*given_support / given_support->head<3>().norm())
-                    : std::nullopt;
+  auto unit = [](const std::optional<Eigen::Vector4d>& plane, const char* what) -> std::optional<Eigen::Vector4d> {
+    if (!plane) return std::nullopt;
+    if (!(plane->allFinite() && plane->head<3>().norm() > 1e-9))
+      throw InputError(std::string("colour-free segmenter: the ") + what + " must be finite, with a non-zero normal");
+    return *plane / plane->head<3>().norm();
+  };
+  const std::optional<Eigen::Vector4d> support = unit(given_support, "given support plane");
+  const std::optional<Eigen::Vector4d> seeded = support ? support : unit(likely_plane, "likely plane");
   // No face fits an image smaller than the smallest segment.
   if (frame.depth_m.rows * frame.depth_m.cols < params_.min_area_px) return result;
   ColourFreeTimings local;
@@ -160,7 +165,7 @@ PlanarSegments ColourFreeSegmenter::segmentPlanes(const RgbdFrame& frame, const 
   // The label image is working memory kept between frames (a fresh one
   // costs more in page faults than filling it).
   thread_local cv::Mat labels;
-  const CellPlanes planes = labelPlanes(frame, excluded, labels, t, support);
+  const CellPlanes planes = labelPlanes(frame, excluded, labels, t, seeded);
   const StageClock clock;
   // Plane of each region; its size (the area of its segments) comes from
   // the segment extraction, which then leaves out the supporting plane's
