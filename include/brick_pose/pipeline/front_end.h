@@ -136,10 +136,10 @@ private:
   /// plate colour) the colour-free segments of the pixels left.
   std::vector<Segment> hsvSegments(const RgbdFrame& frame) const;
   /// The colour-free segments, without the supporting plane when so configured.
+  std::vector<Segment> colourFreeSegments(const RgbdFrame& frame, const cv::Mat& excluded = cv::Mat()) const;
   /// The dominant plane of the frame (estimateSupportPlaneUp), if one holds
   /// enough of it: n and d with n . x + d the height above it.
   std::optional<Eigen::Vector4d> dominantPlane(const RgbdFrame& frame) const;
-  std::vector<Segment> colourFreeSegments(const RgbdFrame& frame, const cv::Mat& excluded = cv::Mat()) const;
   /// The plane the pile stands on when it is given (the frame's from tf,
   /// else RoiFilterParams::support_plane), as a unit normal and offset.
   std::optional<Eigen::Vector4d> givenSupportPlane(const RgbdFrame& frame) const;
