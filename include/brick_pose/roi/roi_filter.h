@@ -272,9 +272,17 @@ private:
                                         const FrameContext& context, CloudProcessingTimings* cloud_timings) const;
   /// Colour-free: whether the face is large enough for two of the smallest type.
   bool mayHoldTwoBricks(const BrickCandidate& candidate) const;
+  /// Whether a seam may cross `face`: always, unless it is one brick wide
+  /// and the probe (probeSeamsAcross) sees none along it.
+  bool mayShowASeamAcross(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& face) const;
   /// Whether no two tiles fit side by side across the face's width: any cut
   /// of a tiling then runs across the whole face (see seam_probe.h).
   bool oneTileWide(const BrickCandidate& candidate) const;
+  /// Whether tiling `strip`, a face one brick wide and cut off, could keep
+  /// a brick: some seam possible across it (probeSeamsAcross), and two of
+  /// its seen ends and those seams a length of one of `types` apart.
+  bool mayCutAWholeBrick(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& strip,
+                         const std::vector<const BrickType*>& types) const;
   /// Whether most of the surface around the segment's outline lies below
   /// its plane (see raised_layer.h).
   bool standsUpFromItsSurroundings(const RgbdFrame& frame, const Segment& segment, const PlaneFit& plane) const;

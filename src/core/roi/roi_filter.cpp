@@ -372,7 +372,7 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
     // to cut on) where they would meet leaves it unsure: partial. With
     // nothing at all seen there it is taken as one brick.
     FaceTiling alternative;
-    if (segment.type_name.empty() && mayHoldTwoBricks(candidate))
+    if (segment.type_name.empty() && mayHoldTwoBricks(candidate) && mayShowASeamAcross(frame, segment, candidate))
     {
       // The smaller types only: the face's own type would tile it whole.
       const BrickType* own = catalogue_.find(candidate.type_name);

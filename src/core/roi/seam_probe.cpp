@@ -52,23 +52,22 @@ std::vector<double> dips(const std::vector<double>& means, int arm)
   return result;
 }
 
-/// The strongest dip in robust standard deviations of all dips (with a
-/// floor of a quarter of `smallest_seam` for noise-free input), counting
-/// only dips of at least `min_dip`; and how many dips were read.
-double strongestDip(const std::vector<double>& bin_dips, double smallest_seam, double min_dip, int& read)
+/// Each bin's dip in robust standard deviations of all dips (with a floor
+/// of a quarter of `smallest_seam` for noise-free input), NaN where unread
+/// or below `min_dip`; and how many dips were read.
+std::vector<double> dipStrengths(const std::vector<double>& bin_dips, double smallest_seam, double min_dip, int& read)
 {
   std::vector<double> values;
   for (const double dip : bin_dips)
     if (!std::isnan(dip)) values.push_back(dip);
   read = static_cast<int>(values.size());
-  if (values.size() < 3) return 0.0;
+  std::vector<double> strengths(bin_dips.size(), std::numeric_limits<double>::quiet_NaN());
+  if (values.size() < 3) return strengths;
   const RobustSpread spread = robustSpread(values);
-  const double centre = spread.centre;
   const double sigma = std::max(0.25 * smallest_seam, spread.sigma);
-  double strongest = 0.0;
-  for (const double dip : values)
-    if (dip >= min_dip) strongest = std::max(strongest, (dip - centre) / sigma);
-  return strongest;
+  for (std::size_t b = 0; b < bin_dips.size(); ++b)
+    if (bin_dips[b] >= min_dip) strengths[b] = (bin_dips[b] - spread.centre) / sigma;
+  return strengths;
 }
 }  // namespace
 
@@ -76,8 +75,13 @@ SeamProbe probeSeamsAcross(const RgbdFrame& frame, const Segment& segment, const
                            double smallest_line_contrast, double smallest_groove_m, const SeamProbeParams& params)
 {
   SeamProbe probe;
-  const Eigen::Vector3d& origin_m = face.corners_m[0];
-  const Eigen::Vector3d along = face.corners_m[1] - face.corners_m[0];
+  // Along the face's long edge, whichever pair of corners bounds it.
+  const std::array<Eigen::Vector3d, 4>& corners_m = face.corners_m;
+  const bool from_corner_1 = (corners_m[2] - corners_m[1]).norm() > (corners_m[1] - corners_m[0]).norm();
+  const Eigen::Vector3d& origin_m = from_corner_1 ? corners_m[1] : corners_m[0];
+  const Eigen::Vector3d along = from_corner_1 ? Eigen::Vector3d(corners_m[2] - corners_m[1])
+                                              : Eigen::Vector3d(corners_m[1] - corners_m[0]);
+  probe.end_edges = from_corner_1 ? std::array<int, 2>{{0, 2}} : std::array<int, 2>{{3, 1}};
   const double depth_m = face.plane.centroid_m.z();
   if (!(along.norm() > 1e-6) || !(depth_m > 0.0) || segment.mask.empty()) return probe;
   const Eigen::Vector3d axis = along.normalized();
@@ -138,12 +142,35 @@ SeamProbe probeSeamsAcross(const RgbdFrame& frame, const Segment& segment, const
   const double min_line = params.min_share_of_smallest_seam * smallest_line_contrast;
   const double min_groove = params.min_share_of_smallest_seam * smallest_groove_m;
   int dark_read = 0, bright_read = 0, groove_read = 0;
-  const double dark = strongestDip(dips(grey_means, params.arm_px), smallest_line_contrast, min_line, dark_read);
-  const double bright = strongestDip(dips(inverted, params.arm_px), smallest_line_contrast, min_line, bright_read);
-  const double groove = strongestDip(dips(offset_means, params.arm_px), smallest_groove_m, min_groove, groove_read);
+  const std::array<std::vector<double>, 3> strengths{
+      {dipStrengths(dips(grey_means, params.arm_px), smallest_line_contrast, min_line, dark_read),
+       dipStrengths(dips(inverted, params.arm_px), smallest_line_contrast, min_line, bright_read),
+       dipStrengths(dips(offset_means, params.arm_px), smallest_groove_m, min_groove, groove_read)}};
   probe.bins = dark_read;
-  probe.strongest = std::max({dark, bright, groove});
-  probe.seam_possible = probe.bins < min_bins || probe.strongest >= params.min_strength;
+  probe.length_m = along.norm();
+  for (int b = 0; b < bins; ++b)
+  {
+    double strongest = 0.0;  // NaN (unread) compares false
+    for (const std::vector<double>& kind : strengths) strongest = std::max(strongest, kind[b]);
+    probe.strongest = std::max(probe.strongest, strongest);
+    if (strongest >= params.min_strength) probe.possible_seams_m.push_back((b + 0.5) * bin_m - margin_m);
+  }
+  probe.located = probe.bins >= min_bins;
+  probe.seam_possible = !probe.located || probe.strongest >= params.min_strength;
   return probe;
+}
+
+bool seamsMayBoundABrick(const SeamProbe& probe, const std::array<bool, 2>& end_seen,
+                         const std::vector<double>& lengths_m, double tolerance_m)
+{
+  if (!probe.located) return true;
+  std::vector<double> ends_m = probe.possible_seams_m;
+  if (end_seen[0]) ends_m.push_back(0.0);
+  if (end_seen[1]) ends_m.push_back(probe.length_m);
+  for (std::size_t i = 0; i < ends_m.size(); ++i)
+    for (std::size_t j = i + 1; j < ends_m.size(); ++j)
+      for (const double length_m : lengths_m)
+        if (std::abs(std::abs(ends_m[i] - ends_m[j]) - length_m) <= tolerance_m) return true;
+  return false;
 }
 }  // namespace brick_pose
