@@ -211,6 +211,15 @@ private:
   /// sides seen do not rule out as `type_doubt`; the reason when none fits.
   std::optional<std::string> typeBySize(const RgbdFrame& frame, const FrameContext& context,
                                         BrickCandidate& candidate) const;
+  /// Colour-free, a face cut off by the border or an occluder (after
+  /// assignType refused it and no split was found): typed by the size of
+  /// its visible part, with that doubt in `type_doubt`, so it is published
+  /// partial. The reason when its shape or no catalogue top fits.
+  std::optional<std::string> typeCutOffFace(const RgbdFrame& frame, const FrameContext& context,
+                                            BrickCandidate& candidate) const;
+  /// Why a colour-free face's outline is no brick's top: too little of its
+  /// quad filled, or too thick; nullopt when it may be one.
+  std::optional<std::string> shapeMisfit(const BrickCandidate& candidate) const;
   /// Colour-free: turns the face's walls (edges to a wall something resting
   /// on it could be: BrickCandidate::resting_wall_m) back into its ends
   /// (kStepUp) when the face cannot go on beneath them, and nothing else
@@ -270,6 +279,12 @@ private:
   /// splitSideBySide()); empty when neither finds two bricks.
   std::optional<RoiOutcome> splitMerged(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
                                         const FrameContext& context, CloudProcessingTimings* cloud_timings) const;
+  /// Colour-free, a measured face cut off by the border or an occluder that
+  /// no split explained: published in `outcome` as partial, typed by what
+  /// is seen of it (typeCutOffFace). False, and nothing published, when no
+  /// type fits it (or the face is not cut off, or has a colour).
+  bool publishCutOff(const RgbdFrame& frame, const FrameContext& context, const Segment& segment,
+                     BrickCandidate& candidate, RoiOutcome& outcome) const;
   /// Colour-free: whether the face is large enough for two of the smallest type.
   bool mayHoldTwoBricks(const BrickCandidate& candidate) const;
   /// Whether a seam may cross `face`: always, unless it is one brick wide

@@ -25,6 +25,7 @@
 
 namespace brick_pose
 {
+using roi_internal::anyTruncated;
 using roi_internal::describe;
 using roi_internal::partRejection;
 using roi_internal::sideAxis;
@@ -409,6 +410,7 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
   if (measured)
     if (std::optional<RoiOutcome> split = splitMerged(frame, segment, candidate, context, cloud_timings))
       return std::move(*split);
+  if (measured && publishCutOff(frame, context, segment, candidate, outcome)) return outcome;
   // Plates at two heights joined through an edge without a clean depth jump
   // give one bent "plane": split where the depth steps, then filter (and
   // tile) each part.
@@ -439,9 +441,21 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
         std::move(split->rejections.begin(), split->rejections.end(), std::back_inserter(outcome.rejections));
         continue;
       }
+    if (part_measured && publishCutOff(frame, context, part, part_candidate, outcome)) continue;
     outcome.rejections.push_back(partRejection(part, *part_reason));
   }
   return outcome;
+}
+
+bool RoiFilter::publishCutOff(const RgbdFrame& frame, const FrameContext& context, const Segment& segment,
+                              BrickCandidate& candidate, RoiOutcome& outcome) const
+{
+  // Colour-free only: a colour segment's type is its colour's, cut off or not.
+  if (!segment.type_name.empty() || !anyTruncated(candidate)) return false;
+  if (typeCutOffFace(frame, context, candidate)) return false;
+  judgeCompleteness(frame, context, false, candidate);
+  outcome.candidates.push_back(std::move(candidate));
+  return true;
 }
 
 std::optional<RoiOutcome> RoiFilter::splitMerged(const RgbdFrame& frame, const Segment& segment,
@@ -615,7 +629,9 @@ void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& co
     for (int k = 0; k < 4; ++k)
       if (candidate.edge_kinds[k] == kind && !isRealEdge(kind, uniform_colour))
       {
+        // A type in doubt is said too: the reason is all a reader sees.
         candidate.partial_reason = edgeReason(k, kind);
+        if (!candidate.type_doubt.empty()) candidate.partial_reason += "; type in doubt: " + candidate.type_doubt;
         return;
       }
   // The face goes on, on its own plane, where the segment does not: a mask

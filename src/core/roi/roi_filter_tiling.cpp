@@ -339,14 +339,19 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
     if (!reason) reason = assignType(frame, context, part, candidate);
     candidate.typed_by_colour = !typed_by_size;  // the tiler's type is a size
     // Without colour, a brick cut off by the border or an occluder could be
-    // any longer type: its size does not tell.
+    // any longer type: its size does not tell, and its visible part's type
+    // is a doubt (typeCutOffFace).
     if (!reason && typed_by_size) endAtWalls(frame, context, candidate);
     if (!reason && typed_by_size && anyTruncated(candidate))
-      reason = "face is cut by an occluder or the image border (" + truncation(candidate) +
-               "): its size cannot tell its type";
+    {
+      if (typeCutOffFace(frame, context, candidate))
+        reason = "face is cut by an occluder or the image border (" + truncation(candidate) +
+                 "): its size cannot tell its type";
+    }
     // The tiler's size is one reading of the tile; types sharing that top
     // and boxes lying on a side are its rivals, as for any colour-free face.
-    if (!reason && typed_by_size) reason = typeBySize(frame, context, candidate);
+    else if (!reason && typed_by_size)
+      reason = typeBySize(frame, context, candidate);
     if (!reason) judgeCompleteness(frame, context, !typed_by_size || plain[k], candidate);
     if (!reason && typed_by_size) doubtComposedTop(frame, plain[k] != 0, true, candidate);
   });

@@ -127,21 +127,25 @@ double strongestCompositionSeam(const RgbdFrame& frame, const PlaneFit& plane, c
   }
   return strongest;
 }
+/// The face's thickness beyond its plane's noise (m). The box is measured
+/// on plane inliers, whose spread grows with depth noise; only thickness
+/// beyond that spread says "not a flat face".
+double thicknessBeyondNoiseM(const BrickCandidate& candidate)
+{
+  const double noise_spread_m = 6.0 * candidate.plane.rms_m;
+  return candidate.obb.valid ? std::max(0.0, candidate.obb.extents_m.z() - noise_spread_m) : 0.0;
+}
 }  // namespace
 
 std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const FrameContext& context,
                                                 const Segment& segment, BrickCandidate& candidate) const
 {
-  const DimensionTolerance& tolerance = params_.dimensions;
-  // The box is measured on plane inliers, whose spread grows with depth
-  // noise; only thickness beyond that spread says "not a flat face".
-  const double noise_spread_m = 6.0 * candidate.plane.rms_m;
-  const double thickness_m = candidate.obb.valid ? std::max(0.0, candidate.obb.extents_m.z() - noise_spread_m) : 0.0;
   if (!segment.type_name.empty())
   {
     const BrickType* type = catalogue_.find(segment.type_name);
     if (!type) return "unknown brick type '" + segment.type_name + "'";
-    if (auto reason = checkTopFaceDimensions(candidate.length_m, candidate.width_m, thickness_m, *type, tolerance))
+    if (auto reason = checkTopFaceDimensions(candidate.length_m, candidate.width_m, thicknessBeyondNoiseM(candidate),
+                                             *type, params_.dimensions))
       return segment.type_name + ": " + *reason;
     candidate.type_name = type->name;
     candidate.typed_by_colour = true;
@@ -149,9 +153,16 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
   }
 
   // Colour-free: only whole faces can be told apart by size (half a blue
-  // brick looks like a green one).
+  // brick looks like a green one); a face cut off is split if it can be,
+  // and else typed as a doubt (typeCutOffFace).
   endAtWalls(frame, context, candidate);
   if (anyTruncated(candidate)) return "face is cut by an occluder or the image border (" + truncation(candidate) + ")";
+  if (std::optional<std::string> misfit = shapeMisfit(candidate)) return misfit;
+  return typeBySize(frame, context, candidate);
+}
+
+std::optional<std::string> RoiFilter::shapeMisfit(const BrickCandidate& candidate) const
+{
   if (!fillsItsQuad(candidate, params_))
   {
     std::ostringstream text;
@@ -164,9 +175,37 @@ std::optional<std::string> RoiFilter::assignType(const RgbdFrame& frame, const F
            << " px, less than " << kMinFillInsideRim;
     return text.str();
   }
-  if (thickness_m > tolerance.max_thickness_m)
-    return describe("thickness", thickness_m, "m exceeds", tolerance.max_thickness_m);
-  return typeBySize(frame, context, candidate);
+  const double thickness_m = thicknessBeyondNoiseM(candidate);
+  if (thickness_m > params_.dimensions.max_thickness_m)
+    return describe("thickness", thickness_m, "m exceeds", params_.dimensions.max_thickness_m);
+  return std::nullopt;
+}
+
+std::optional<std::string> RoiFilter::typeCutOffFace(const RgbdFrame& frame, const FrameContext& context,
+                                                     BrickCandidate& candidate) const
+{
+  // What is seen of a brick cut off may be a whole smaller one's top, or a
+  // larger one's part: the visible part's type is published as a doubt, so
+  // the face stays partial (its cut edges alone make it so) and says why.
+  const std::string cut = "face is cut by an occluder or the image border (" + truncation(candidate) + ")";
+  if (std::optional<std::string> misfit = shapeMisfit(candidate)) return cut + "; " + *misfit;
+  if (std::optional<std::string> no_type = typeBySize(frame, context, candidate)) return cut + "; " + *no_type;
+  // Its visible part must be that top as closely as a whole face's size
+  // must be (judgeCompleteness): a fragment only roughly the size of a
+  // small type is no reading of one.
+  const BrickType* type = catalogue_.find(candidate.type_name);
+  const double tolerance_m = params_.dimensions.tolerance_m;
+  if (type && !showsTop(*type, candidate.length_m, candidate.width_m, tolerance_m))
+  {
+    std::ostringstream text;
+    text.precision(3);
+    text << cut << "; its visible part, " << candidate.length_m << " x " << candidate.width_m << " m, is no "
+         << type->name << " top within " << tolerance_m << " m";
+    return text.str();
+  }
+  const std::string doubt = "it is cut off, and its type is the one its visible part fits (a larger one's part may look so)";
+  candidate.type_doubt = candidate.type_doubt.empty() ? doubt : doubt + "; " + candidate.type_doubt;
+  return std::nullopt;
 }
 
 std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const FrameContext& context,
