@@ -188,21 +188,21 @@ std::optional<std::string> RoiFilter::typeCutOffFace(const RgbdFrame& frame, con
   // larger one's part: the visible part's type is published as a doubt, so
   // the face stays partial (its cut edges alone make it so) and says why.
   const std::string cut = "face is cut by an occluder or the image border (" + truncation(candidate) + ")";
+  // Its visible part must be a catalogue top as closely as a whole face's
+  // size must be (judgeCompleteness): a fragment only roughly the size of
+  // a small type is no reading of one. Checked first: most faces cut off
+  // fit none, and typing by size reads their sides.
+  const double tolerance_m = params_.dimensions.tolerance_m;
+  auto fitsClosely = [&](const BrickType& type) {
+    return showsTop(type, candidate.length_m, candidate.width_m, tolerance_m);
+  };
+  if (std::none_of(catalogue_.types().begin(), catalogue_.types().end(), fitsClosely))
+    return cut + "; its visible part fits no catalogue top within the dimension tolerance";
   if (std::optional<std::string> misfit = shapeMisfit(candidate)) return cut + "; " + *misfit;
   if (std::optional<std::string> no_type = typeBySize(frame, context, candidate)) return cut + "; " + *no_type;
-  // Its visible part must be that top as closely as a whole face's size
-  // must be (judgeCompleteness): a fragment only roughly the size of a
-  // small type is no reading of one.
   const BrickType* type = catalogue_.find(candidate.type_name);
-  const double tolerance_m = params_.dimensions.tolerance_m;
-  if (type && !showsTop(*type, candidate.length_m, candidate.width_m, tolerance_m))
-  {
-    std::ostringstream text;
-    text.precision(3);
-    text << cut << "; its visible part, " << candidate.length_m << " x " << candidate.width_m << " m, is no "
-         << type->name << " top within " << tolerance_m << " m";
-    return text.str();
-  }
+  if (type && !fitsClosely(*type))
+    return cut + "; its visible part is no " + type->name + " top within the dimension tolerance";
   const std::string doubt = "it is cut off, and its type is the one its visible part fits (a larger one's part may look so)";
   candidate.type_doubt = candidate.type_doubt.empty() ? doubt : doubt + "; " + candidate.type_doubt;
   return std::nullopt;
