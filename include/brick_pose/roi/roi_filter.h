@@ -211,10 +211,11 @@ private:
   /// sides seen do not rule out as `type_doubt`; the reason when none fits.
   std::optional<std::string> typeBySize(const RgbdFrame& frame, const FrameContext& context,
                                         BrickCandidate& candidate) const;
-  /// Colour-free, a face cut off by the border or an occluder (after
-  /// assignType refused it and no split was found): typed by the size of
-  /// its visible part, with that doubt in `type_doubt`, so it is published
-  /// partial. The reason when its shape or no catalogue top fits.
+  /// Colour-free, a face or tile cut off by the border or an occluder (a
+  /// face after assignType refused it and no split was found): typed by
+  /// the size of its visible part, with that doubt in `type_doubt`, so it
+  /// is published partial. The reason when its shape or no catalogue top
+  /// fits.
   std::optional<std::string> typeCutOffFace(const RgbdFrame& frame, const FrameContext& context,
                                             BrickCandidate& candidate) const;
   /// Why a colour-free face's outline is no brick's top: too little of its

@@ -25,7 +25,6 @@ namespace brick_pose
 using roi_internal::describe;
 using roi_internal::partRejection;
 using roi_internal::anyTruncated;
-using roi_internal::truncation;
 using roi_internal::kMaxUntiledForAlternative;
 
 namespace
@@ -344,14 +343,14 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
     if (!reason && typed_by_size) endAtWalls(frame, context, candidate);
     if (!reason && typed_by_size && anyTruncated(candidate))
     {
-      if (typeCutOffFace(frame, context, candidate))
-        reason = "face is cut by an occluder or the image border (" + truncation(candidate) +
-                 "): its size cannot tell its type";
+      reason = typeCutOffFace(frame, context, candidate);
     }
-    // The tiler's size is one reading of the tile; types sharing that top
-    // and boxes lying on a side are its rivals, as for any colour-free face.
     else if (!reason && typed_by_size)
+    {
+      // The tiler's size is one reading of the tile; types sharing that top
+      // and boxes lying on a side are its rivals, as for any colour-free face.
       reason = typeBySize(frame, context, candidate);
+    }
     if (!reason) judgeCompleteness(frame, context, !typed_by_size || plain[k], candidate);
     if (!reason && typed_by_size) doubtComposedTop(frame, plain[k] != 0, true, candidate);
   });
