@@ -610,6 +610,36 @@ TEST(TopFaceCheck, AFaceWithACornerJustPastTheImageBorderIsNotComplete)
   EXPECT_TRUE(inside_result.candidates[0].complete) << inside_result.candidates[0].partial_reason;
 }
 
+TEST(TopFaceCheck, ColourFreeABrickCutByTheBorderIsPartialWithItsTypeInDoubtOrRefused)
+{
+  // A blue (1.20 m) running out of view. What is seen of it may fit a
+  // catalogue top (here its own, a corner short) or none; fitting one within
+  // the dimension tolerance, it is published partial, typed by its visible
+  // part, the doubt in its reason; fitting none (about 1 m seen), refused.
+  FrontEndParams params;
+  params.mode = SegmentationMode::kColourFree;
+  const FrontEnd front_end(BrickCatalogue::mbzirc2020(), params);
+  const sim::Scene centred = scene({{"blue", {0.0, 0.0, 0.2}, 105.0}}, 80.0);
+
+  const Rendered corner_cut = render(withCornerPastBottomBorder(centred, 50.0));
+  ASSERT_GT(corner_cut.synthetic.truth[0].visible_fraction, 0.9);
+  const FrontEndResult corner_result = front_end.process(corner_cut.frame);
+  ASSERT_EQ(corner_result.candidates.size(), 1u);
+  const BrickCandidate& seen = corner_result.candidates[0];
+  EXPECT_FALSE(seen.complete);
+  EXPECT_EQ(seen.type_name, "blue");
+  EXPECT_NE(seen.partial_reason.find("image border"), std::string::npos) << seen.partial_reason;
+  EXPECT_NE(seen.partial_reason.find("type in doubt"), std::string::npos) << seen.partial_reason;
+
+  const Rendered end_cut = render(withCornerPastBottomBorder(centred, 100.0));
+  ASSERT_LT(end_cut.synthetic.truth[0].visible_fraction, 0.85);
+  const FrontEndResult end_result = front_end.process(end_cut.frame);
+  EXPECT_TRUE(end_result.candidates.empty()) << end_result.candidates.front().type_name;
+  ASSERT_FALSE(end_result.rejections.empty());
+  EXPECT_NE(end_result.rejections.front().reason.find("image border"), std::string::npos)
+      << end_result.rejections.front().reason;
+}
+
 /// The red brick under test and a green brick held above it whose corner
 /// reaches `overlap_m` over the red top's corner (negative: that far clear).
 sim::Scene redWithGreenOverItsCorner(double overlap_m)
