@@ -270,7 +270,8 @@ private:
   /// too (`type_doubt`): one brick, or several smaller ones.
   void doubtComposedTop(const RgbdFrame& frame, std::optional<bool> plain, bool in_layer,
                         BrickCandidate& candidate) const;
-  /// Sets `complete` and `partial_reason` of a typed candidate;
+  /// Sets `complete` and `partial_reason` of a typed candidate (a reason
+  /// from an edge names its `type_doubt` too, if any);
   /// `uniform_colour`: found by its plate colour, so a dark line along an
   /// edge is a seam (on printed boxes it may be print).
   void judgeCompleteness(const RgbdFrame& frame, const FrameContext& context, bool uniform_colour,
