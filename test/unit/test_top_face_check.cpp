@@ -586,17 +586,24 @@ sim::Scene withCornerPastBottomBorder(sim::Scene bricks, double past_border_px)
   return bricks;
 }
 
+/// The blue of the border tests below (1.2 m from the camera, seen at 80
+/// deg), moved down until its lowest top corner projects `past_border_px`
+/// below the image's last row (negative: above it), rendered.
+Rendered blueWithCornerPastBottomBorder(double past_border_px)
+{
+  return render(withCornerPastBottomBorder(scene({{"blue", {0.0, 0.0, 0.2}, 105.0}}, 80.0), past_border_px));
+}
+
 TEST(TopFaceCheck, AFaceWithACornerJustPastTheImageBorderIsNotComplete)
 {
   FrontEndParams params;
   params.mode = SegmentationMode::kHsv;
   const FrontEnd front_end(BrickCatalogue::mbzirc2020(), params);
-  const sim::Scene centred = scene({{"blue", {0.0, 0.0, 0.2}, 105.0}}, 80.0);
 
   // 5 px past the border the quad still has the catalogue's size and the
   // edges' profiles (which stay clear of the corners) see real edges, but
   // the corner itself was never seen.
-  const Rendered cut = render(withCornerPastBottomBorder(centred, 5.0));
+  const Rendered cut = blueWithCornerPastBottomBorder(5.0);
   const FrontEndResult cut_result = front_end.process(cut.frame);
   ASSERT_EQ(cut_result.candidates.size(), 1u);
   EXPECT_FALSE(cut_result.candidates[0].complete);
@@ -604,7 +611,7 @@ TEST(TopFaceCheck, AFaceWithACornerJustPastTheImageBorderIsNotComplete)
       << cut_result.candidates[0].partial_reason;
 
   // 25 px inside it is whole.
-  const Rendered inside = render(withCornerPastBottomBorder(centred, -25.0));
+  const Rendered inside = blueWithCornerPastBottomBorder(-25.0);
   const FrontEndResult inside_result = front_end.process(inside.frame);
   ASSERT_EQ(inside_result.candidates.size(), 1u);
   EXPECT_TRUE(inside_result.candidates[0].complete) << inside_result.candidates[0].partial_reason;
@@ -619,9 +626,8 @@ TEST(TopFaceCheck, ColourFreeABrickCutByTheBorderIsPartialWithItsTypeInDoubtOrRe
   FrontEndParams params;
   params.mode = SegmentationMode::kColourFree;
   const FrontEnd front_end(BrickCatalogue::mbzirc2020(), params);
-  const sim::Scene centred = scene({{"blue", {0.0, 0.0, 0.2}, 105.0}}, 80.0);
 
-  const Rendered corner_cut = render(withCornerPastBottomBorder(centred, 50.0));
+  const Rendered corner_cut = blueWithCornerPastBottomBorder(50.0);
   ASSERT_GT(corner_cut.synthetic.truth[0].visible_fraction, 0.9);
   const FrontEndResult corner_result = front_end.process(corner_cut.frame);
   ASSERT_EQ(corner_result.candidates.size(), 1u);
@@ -631,7 +637,7 @@ TEST(TopFaceCheck, ColourFreeABrickCutByTheBorderIsPartialWithItsTypeInDoubtOrRe
   EXPECT_NE(seen.partial_reason.find("image border"), std::string::npos) << seen.partial_reason;
   EXPECT_NE(seen.partial_reason.find("type in doubt"), std::string::npos) << seen.partial_reason;
 
-  const Rendered end_cut = render(withCornerPastBottomBorder(centred, 100.0));
+  const Rendered end_cut = blueWithCornerPastBottomBorder(100.0);
   ASSERT_LT(end_cut.synthetic.truth[0].visible_fraction, 0.85);
   const FrontEndResult end_result = front_end.process(end_cut.frame);
   EXPECT_TRUE(end_result.candidates.empty()) << end_result.candidates.front().type_name;
