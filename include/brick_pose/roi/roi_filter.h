@@ -300,6 +300,13 @@ private:
   /// its seen ends and those seams a length of one of `types` apart.
   bool mayCutAWholeBrick(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& strip,
                          const std::vector<const BrickType*>& types) const;
+  /// The colour-free tiler's types for a merged `face`: those of `types`
+  /// whose top could be at the face's height above the given support
+  /// (typesStandingAt, levels around its foot included); `types` when no
+  /// support is given or none could.
+  std::vector<const BrickType*> typesStandingWhereTheFaceIs(const RgbdFrame& frame, const FrameContext& context,
+                                                            const BrickCandidate& face,
+                                                            const std::vector<const BrickType*>& types) const;
   /// Whether most of the surface around the segment's outline lies below
   /// its plane (see raised_layer.h).
   bool standsUpFromItsSurroundings(const RgbdFrame& frame, const Segment& segment, const PlaneFit& plane) const;

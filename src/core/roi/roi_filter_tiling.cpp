@@ -255,6 +255,22 @@ bool RoiFilter::mayShowASeamAcross(const RgbdFrame& frame, const Segment& segmen
              .seam_possible;
 }
 
+std::vector<const BrickType*> RoiFilter::typesStandingWhereTheFaceIs(const RgbdFrame& frame,
+                                                                     const FrameContext& context,
+                                                                     const BrickCandidate& face,
+                                                                     const std::vector<const BrickType*>& types) const
+{
+  // Every brick of a merged face stands where the face is: two box_small
+  // side by side 0.15 m above the floor make a box_large's top, but no
+  // box_large (0.25 m tall) has its top there. Without a support, or where
+  // none of the types could stand (a plinth under the pile), all stay.
+  const std::optional<StandingHeight> standing = standingHeight(frame, context, face, types);
+  if (!standing) return types;
+  std::vector<const BrickType*> standing_types = typesStandingAt(
+      types, standing->height_m, standing->levels_m, stack_heights_, params_.height_above_support_tolerance_m);
+  return standing_types.empty() ? types : standing_types;
+}
+
 bool RoiFilter::mayHoldTwoBricks(const BrickCandidate& candidate) const
 {
   double smallest_area_m2 = std::numeric_limits<double>::max();
@@ -267,9 +283,11 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
                                           CloudProcessingTimings* cloud_timings, FaceTiling* tried,
                                           const std::vector<const BrickType*>* only_types) const
 {
-  const std::vector<const BrickType*> types = only_types ? *only_types : typesFor(catalogue_, segment.type_name);
-  if (types.empty()) return std::nullopt;
   const bool typed_by_size = segment.type_name.empty();
+  const std::vector<const BrickType*> all_types = only_types ? *only_types : typesFor(catalogue_, segment.type_name);
+  const std::vector<const BrickType*> types =
+      typed_by_size ? typesStandingWhereTheFaceIs(frame, context, measured, all_types) : all_types;
+  if (types.empty()) return std::nullopt;
   if (typed_by_size && !isRaisedLayer(measured.edge_kinds, clearOfImageBorder(segment, frame, params_.edges.probe_px)) &&
       !standsUpFromItsSurroundings(frame, segment, measured.plane))
     return std::nullopt;
