@@ -300,13 +300,21 @@ private:
   /// its seen ends and those seams a length of one of `types` apart.
   bool mayCutAWholeBrick(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& strip,
                          const std::vector<const BrickType*>& types) const;
-  /// The colour-free tiler's types for a merged `face`: those of `types`
-  /// whose top could be at the face's height above the given support
-  /// (typesStandingAt, levels around its foot included); `types` when no
-  /// support is given or none could.
-  std::vector<const BrickType*> typesStandingWhereTheFaceIs(const RgbdFrame& frame, const FrameContext& context,
-                                                            const BrickCandidate& face,
-                                                            const std::vector<const BrickType*>& types) const;
+  /// The colour-free tiler's types for a merged face, and whether its
+  /// height fixes their size.
+  struct TypesAtHeight
+  {
+    std::vector<const BrickType*> types;
+    /// The types standing most exactly at the face's height (within
+    /// kTypeMarginM of the least standingMisfitM) share one top.
+    bool one_top_size = false;
+  };
+  /// Those of `types` whose top could be at `face`'s height above the
+  /// given support (typesStandingAt, levels around its foot included);
+  /// `types` (one_top_size false) when no support is given or none could.
+  TypesAtHeight typesStandingWhereTheFaceIs(const RgbdFrame& frame, const FrameContext& context,
+                                            const BrickCandidate& face,
+                                            const std::vector<const BrickType*>& types) const;
   /// Whether most of the surface around the segment's outline lies below
   /// its plane (see raised_layer.h).
   bool standsUpFromItsSurroundings(const RgbdFrame& frame, const Segment& segment, const PlaneFit& plane) const;

@@ -255,20 +255,34 @@ bool RoiFilter::mayShowASeamAcross(const RgbdFrame& frame, const Segment& segmen
              .seam_possible;
 }
 
-std::vector<const BrickType*> RoiFilter::typesStandingWhereTheFaceIs(const RgbdFrame& frame,
-                                                                     const FrameContext& context,
-                                                                     const BrickCandidate& face,
-                                                                     const std::vector<const BrickType*>& types) const
+RoiFilter::TypesAtHeight RoiFilter::typesStandingWhereTheFaceIs(const RgbdFrame& frame, const FrameContext& context,
+                                                                const BrickCandidate& face,
+                                                                const std::vector<const BrickType*>& types) const
 {
   // Every brick of a merged face stands where the face is: two box_small
   // side by side 0.15 m above the floor make a box_large's top, but no
   // box_large (0.25 m tall) has its top there. Without a support, or where
   // none of the types could stand (a plinth under the pile), all stay.
   const std::optional<StandingHeight> standing = standingHeight(frame, context, face, types);
-  if (!standing) return types;
+  if (!standing) return {types, false};
   std::vector<const BrickType*> standing_types = typesStandingAt(
       types, standing->height_m, standing->levels_m, stack_heights_, params_.height_above_support_tolerance_m);
-  return standing_types.empty() ? types : standing_types;
+  if (standing_types.empty()) return {types, false};
+  // The types standing there most exactly (as closestType weighs them):
+  // when they share one top, a cut the tiler made at that size is placed.
+  const std::vector<double> misfits_m = standingMisfitsM(standing_types, standing->height_m, stack_heights_);
+  const double least_m = *std::min_element(misfits_m.begin(), misfits_m.end());
+  const BrickType* first = nullptr;
+  bool one_top = true;
+  for (std::size_t i = 0; i < standing_types.size(); ++i)
+  {
+    if (misfits_m[i] > least_m + kTypeMarginM) continue;
+    if (!first)
+      first = standing_types[i];
+    else
+      one_top = one_top && showsTop(*standing_types[i], first->length_m, first->width_m, params_.dimensions.tolerance_m);
+  }
+  return {std::move(standing_types), one_top};
 }
 
 bool RoiFilter::mayHoldTwoBricks(const BrickCandidate& candidate) const
@@ -285,8 +299,9 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
 {
   const bool typed_by_size = segment.type_name.empty();
   const std::vector<const BrickType*> all_types = only_types ? *only_types : typesFor(catalogue_, segment.type_name);
-  const std::vector<const BrickType*> types =
-      typed_by_size ? typesStandingWhereTheFaceIs(frame, context, measured, all_types) : all_types;
+  const TypesAtHeight at_height = typed_by_size ? typesStandingWhereTheFaceIs(frame, context, measured, all_types)
+                                                : TypesAtHeight{all_types, false};
+  const std::vector<const BrickType*>& types = at_height.types;
   if (types.empty()) return std::nullopt;
   if (typed_by_size && !isRaisedLayer(measured.edge_kinds, clearOfImageBorder(segment, frame, params_.edges.probe_px)) &&
       !standsUpFromItsSurroundings(frame, segment, measured.plane))
@@ -345,13 +360,13 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
     std::optional<std::string>& reason = reasons[k];
     // Without colour, a tile cut where no seam shows is a guess of the
     // tiler's (checked first: it needs no measuring).
-    if (typed_by_size && !seams_required)
-      if (const int unseen = firstUnseenCut(tiling.tiles[k]); unseen >= 0)
-      {
-        reason = "cut " + std::to_string(unseen) + " from its neighbour shows no seam (no groove, no line): " +
-                 "its size cannot tell its type";
-        return;
-      }
+    const int unseen = typed_by_size && !seams_required ? firstUnseenCut(tiling.tiles[k]) : -1;
+    if (unseen >= 0 && !at_height.one_top_size)
+    {
+      reason = "cut " + std::to_string(unseen) + " from its neighbour shows no seam (no groove, no line): " +
+               "its size cannot tell its type";
+      return;
+    }
     reason = measure(frame, part, context, &tile_timings[k], candidate, &seams.edges);
     if (!reason) reason = assignType(frame, context, part, candidate);
     candidate.typed_by_colour = !typed_by_size;  // the tiler's type is a size
@@ -368,6 +383,14 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
       // The tiler's size is one reading of the tile; types sharing that top
       // and boxes lying on a side are its rivals, as for any colour-free face.
       reason = typeBySize(frame, context, candidate);
+    }
+    if (!reason && unseen >= 0)
+    {
+      // Where it was cut, the face's height placed the cut: the catalogue
+      // has one top there. A doubt, so the tile is never complete.
+      const std::string doubt = "cut " + std::to_string(unseen) +
+                                " from its neighbour shows no seam: its size is the one top standing at its height";
+      candidate.type_doubt = candidate.type_doubt.empty() ? doubt : doubt + "; " + candidate.type_doubt;
     }
     if (!reason) judgeCompleteness(frame, context, !typed_by_size || plain[k], candidate);
     if (!reason && typed_by_size) doubtComposedTop(frame, plain[k] != 0, true, candidate);
