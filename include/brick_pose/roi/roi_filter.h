@@ -218,6 +218,16 @@ private:
   /// fits.
   std::optional<std::string> typeCutOffFace(const RgbdFrame& frame, const FrameContext& context,
                                             BrickCandidate& candidate) const;
+  /// Colour-free, with a support given: why the type a face's size gave
+  /// (`candidate.type_name`) cannot be its type, when nothing showing a top
+  /// of the face's size (a type, a box lying on a side) could stand at the
+  /// face's height above the support (levels around its foot included)
+  /// while some catalogue box could: smaller boxes side by side make its
+  /// top there (two box_small 0.15 m up are no box_large). Nullopt when
+  /// one could, or nothing could (the face may stand on something the
+  /// catalogue lacks: its height says nothing).
+  std::optional<std::string> heightRulesOutType(const RgbdFrame& frame, const FrameContext& context,
+                                                const BrickCandidate& candidate) const;
   /// Why a colour-free face's outline is no brick's top: too little of its
   /// quad filled, or too thick; nullopt when it may be one.
   std::optional<std::string> shapeMisfit(const BrickCandidate& candidate) const;
@@ -342,9 +352,12 @@ private:
                          const std::vector<const BrickType*>& types, const SeamReading& seams) const;
   /// Colour-free tiling of a face larger than any brick: each type alone
   /// (the smallest first), then all together; the finest tiling whose every
-  /// cut is seen (a groove or a line), or none.
+  /// cut is seen (a groove or a line), or none. With `sizes_place_cuts`
+  /// (the face's height leaves one top size: TypesAtHeight), a tiling with
+  /// no cut seen is kept too.
   FaceTiling tileBySeenSeams(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
-                             const std::vector<const BrickType*>& types, const SeamReading& seams) const;
+                             const std::vector<const BrickType*>& types, const SeamReading& seams,
+                             bool sizes_place_cuts) const;
   /// How the tiler reads a face's seams, given its uniformity and its level
   /// `face_grey` in the grey its lines are read in (faceGreyLevel): on a
   /// plain face a line is a seam, read against its light

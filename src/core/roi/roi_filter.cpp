@@ -366,6 +366,16 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
   std::optional<std::string> reason = measure(frame, segment, context, cloud_timings, candidate);
   const bool measured = !reason;
   if (!reason) reason = assignType(frame, context, segment, candidate);
+  if (!reason && segment.type_name.empty())
+    if (const std::optional<std::string> ruled_out = heightRulesOutType(frame, context, candidate))
+    {
+      // Its size is one type's top, its height another's: the types
+      // standing there tile it (tile() keeps only those), or it stays in
+      // doubt, never complete.
+      if (std::optional<RoiOutcome> tiled = tile(frame, segment, candidate, context, false, cloud_timings))
+        return std::move(*tiled);
+      candidate.type_doubt = candidate.type_doubt.empty() ? *ruled_out : *ruled_out + "; " + candidate.type_doubt;
+    }
   if (!reason)
   {
     // Colour-free: a face of one brick's size may be smaller bricks end to

@@ -113,8 +113,8 @@ RoiFilter::SeamReading RoiFilter::seamReadingFor(const ColourUniformity& face_un
 }
 
 FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& segment, const BrickCandidate& measured,
-                                      const std::vector<const BrickType*>& types,
-                                      const SeamReading& seams) const
+                                      const std::vector<const BrickType*>& types, const SeamReading& seams,
+                                      bool sizes_place_cuts) const
 {
   // All types together first (mixed layers); then, when it saw any seam,
   // each type alone, the smallest tops first. Among tilings whose tiles'
@@ -162,7 +162,8 @@ FaceTiling RoiFilter::tileBySeenSeams(const RgbdFrame& frame, const Segment& seg
   };
   for (FaceTiling& tiling : tilings)
   {
-    if (tiling.tiles.size() < 2 || tiling.cuts == 0 || supportedTileCount(tiling) == 0) continue;
+    if (tiling.tiles.size() < 2 || tiling.cuts == 0) continue;
+    if (supportedTileCount(tiling) == 0 && !sizes_place_cuts) continue;
     if (!best || rank(tiling) > rank(*best)) best = &tiling;
   }
   if (!best) return FaceTiling();
@@ -261,28 +262,49 @@ RoiFilter::TypesAtHeight RoiFilter::typesStandingWhereTheFaceIs(const RgbdFrame&
 {
   // Every brick of a merged face stands where the face is: two box_small
   // side by side 0.15 m above the floor make a box_large's top, but no
-  // box_large (0.25 m tall) has its top there. Without a support, or where
-  // none of the types could stand (a plinth under the pile), all stay.
-  const std::optional<StandingHeight> standing = standingHeight(frame, context, face, types);
+  // box_large (0.25 m tall) has its top there, on its bottom, a side or an
+  // end. Without a support, or where none of the types could stand (a
+  // plinth under the pile), all stay.
+  std::vector<BrickType> poses;  // each type on its bottom, then lying
+  std::vector<std::size_t> type_of;
+  for (std::size_t t = 0; t < types.size(); ++t)
+  {
+    poses.push_back(*types[t]);
+    for (BrickType& variant : lyingVariants({*types[t]})) poses.push_back(std::move(variant));
+    type_of.resize(poses.size(), t);
+  }
+  std::vector<const BrickType*> shown;
+  for (const BrickType& pose : poses) shown.push_back(&pose);
+  const std::optional<StandingHeight> standing = standingHeight(frame, context, face, shown);
   if (!standing) return {types, false};
-  std::vector<const BrickType*> standing_types = typesStandingAt(
-      types, standing->height_m, standing->levels_m, stack_heights_, params_.height_above_support_tolerance_m);
-  if (standing_types.empty()) return {types, false};
-  // The types standing there most exactly (as closestType weighs them):
-  // when they share one top, a cut the tiler made at that size is placed.
-  const std::vector<double> misfits_m = standingMisfitsM(standing_types, standing->height_m, stack_heights_);
+  const std::vector<const BrickType*> standing_poses = typesStandingAt(
+      shown, standing->height_m, standing->levels_m, stack_heights_, params_.height_above_support_tolerance_m);
+  if (standing_poses.empty()) return {types, false};
+  std::vector<char> stands(types.size(), 0);
+  for (const BrickType* pose : standing_poses) stands[type_of[pose - poses.data()]] = 1;
+  TypesAtHeight result;
+  for (std::size_t t = 0; t < types.size(); ++t)
+    if (stands[t]) result.types.push_back(types[t]);
+  // The poses standing there most exactly (as closestType weighs them):
+  // when they all show the top of one type on its bottom, a cut the tiler
+  // made at that size is placed.
+  const std::vector<double> misfits_m = standingMisfitsM(standing_poses, standing->height_m, stack_heights_);
   const double least_m = *std::min_element(misfits_m.begin(), misfits_m.end());
   const BrickType* first = nullptr;
-  bool one_top = true;
-  for (std::size_t i = 0; i < standing_types.size(); ++i)
+  result.one_top_size = true;
+  for (std::size_t i = 0; i < standing_poses.size(); ++i)
   {
     if (misfits_m[i] > least_m + kTypeMarginM) continue;
-    if (!first)
-      first = standing_types[i];
-    else
-      one_top = one_top && showsTop(*standing_types[i], first->length_m, first->width_m, params_.dimensions.tolerance_m);
+    if (!first) first = standing_poses[i];
+    result.one_top_size = result.one_top_size && showsTop(*standing_poses[i], first->length_m, first->width_m,
+                                                          params_.dimensions.tolerance_m);
   }
-  return {std::move(standing_types), one_top};
+  // The tiler lays types on their bottoms: a lying box's face is no tile.
+  result.one_top_size = result.one_top_size && first &&
+                        std::any_of(result.types.begin(), result.types.end(), [&](const BrickType* type) {
+                          return showsTop(*type, first->length_m, first->width_m, params_.dimensions.tolerance_m);
+                        });
+  return result;
 }
 
 bool RoiFilter::mayHoldTwoBricks(const BrickCandidate& candidate) const
@@ -318,7 +340,8 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   // In the grey the seams are read in: their lines scale with it.
   const double face_grey = faceGreyLevel(frame, segment.mask, segment.bounding_box_px);
   const SeamReading seams = seamReadingFor(face_uniformity, face_grey);
-  FaceTiling tiling = typed_by_size && !seams_required ? tileBySeenSeams(frame, segment, measured, types, seams)
+  FaceTiling tiling = typed_by_size && !seams_required
+                          ? tileBySeenSeams(frame, segment, measured, types, seams, at_height.one_top_size)
                       : typed_by_size ? tileFace(frame, segment, measured, types, params_.dimensions.tolerance_m,
                                                  seams.tiling, seams.edges)
                                       : tileEachWay(frame, segment, measured, types, seams);
@@ -334,7 +357,9 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   // clearly lined with every tile plain. A face larger than any brick has no
   // single-brick reading: each of its tiles needs its own cuts seen (below),
   // and a tile whose cut is only a line on a printed face stays partial.
-  if (typed_by_size && (tiling.cuts == 0 || tiling.seen_cuts == 0)) return std::nullopt;
+  // Where the face's height leaves one top size, that size places the cuts:
+  // tiles cut where nothing is seen are published in doubt (below).
+  if (typed_by_size && (tiling.cuts == 0 || (tiling.seen_cuts == 0 && !at_height.one_top_size))) return std::nullopt;
   const bool cuts_grooved = tiling.cuts > 0 && tiling.grooved_cuts == tiling.cuts;
   const double clear_line = std::min(kClearSeamLineContrast, kClearSeamLineShare * face_grey);
   const bool cuts_lined = tiling.cuts > 0 && tiling.seen_cuts == tiling.cuts &&

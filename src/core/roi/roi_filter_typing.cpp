@@ -208,6 +208,40 @@ std::optional<std::string> RoiFilter::typeCutOffFace(const RgbdFrame& frame, con
   return std::nullopt;
 }
 
+std::optional<std::string> RoiFilter::heightRulesOutType(const RgbdFrame& frame, const FrameContext& context,
+                                                         const BrickCandidate& candidate) const
+{
+  const BrickType* own = catalogue_.find(candidate.type_name);
+  const double tolerance_m = params_.height_above_support_tolerance_m;
+  if (!own || !(tolerance_m > 0.0) || !context.up.support_given) return std::nullopt;
+  const double height_m = context.up.heightAboveSupport(candidate.centroid_m);
+  // Most faces stand where their type does: that needs no levels read.
+  if (!typesStandingAt({own}, height_m, {}, stack_heights_, tolerance_m).empty()) return std::nullopt;
+  // What shows a top of the face's size (a type, or a box lying on a side),
+  // and what stands anywhere at all.
+  std::vector<const BrickType*> shown, all;
+  for (const BrickType& type : catalogue_.types())
+  {
+    all.push_back(&type);
+    if (showsTop(type, candidate.length_m, candidate.width_m, params_.classification_tolerance_m)) shown.push_back(&type);
+  }
+  for (const BrickType& variant : lying_variants_)
+  {
+    all.push_back(&variant);
+    if (showsTop(variant, candidate.length_m, candidate.width_m, params_.classification_tolerance_m))
+      shown.push_back(&variant);
+  }
+  const std::optional<StandingHeight> standing = standingHeight(frame, context, candidate, all);
+  if (!standing ||
+      !typesStandingAt(shown, standing->height_m, standing->levels_m, stack_heights_, tolerance_m).empty())
+    return std::nullopt;
+  std::ostringstream text;
+  text.precision(3);
+  text << "its top is " << standing->height_m << " m above the support, where no " << own->name << " ("
+       << own->height_m << " m tall) stands: smaller boxes side by side may make it up";
+  return text.str();
+}
+
 std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const FrameContext& context,
                                                  BrickCandidate& candidate) const
 {
