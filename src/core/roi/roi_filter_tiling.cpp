@@ -15,6 +15,7 @@
 
 #include "brick_pose/common/parallel_for.h"
 #include "brick_pose/roi/colour_uniformity.h"
+#include "brick_pose/roi/foot_levels.h"
 #include "brick_pose/roi/raised_layer.h"
 #include "brick_pose/roi/seam_probe.h"
 
@@ -275,11 +276,18 @@ RoiFilter::TypesAtHeight RoiFilter::typesStandingWhereTheFaceIs(const RgbdFrame&
   }
   std::vector<const BrickType*> shown;
   for (const BrickType& pose : poses) shown.push_back(&pose);
-  const std::optional<StandingHeight> standing = standingHeight(frame, context, face, shown);
-  if (!standing) return {types, false};
-  const std::vector<const BrickType*> standing_poses = typesStandingAt(
-      shown, standing->height_m, standing->levels_m, stack_heights_, params_.height_above_support_tolerance_m);
+  const double tolerance_m = params_.height_above_support_tolerance_m;
+  if (!(tolerance_m > 0.0) || !context.up.support_given) return {types, false};
+  const double height_m = context.up.heightAboveSupport(face.centroid_m);
+  std::vector<const BrickType*> standing_poses = typesStandingAt(shown, height_m, {}, stack_heights_, tolerance_m);
   if (standing_poses.empty()) return {types, false};
+  // The levels around its foot (read only when they may add a pose) are
+  // more places to stand.
+  if (standing_poses.size() < shown.size())
+    standing_poses = typesStandingAt(shown, height_m,
+                                     levelsAroundFoot(frame, face.mask, face.bounding_box_px, face.plane, context.up,
+                                                      tolerance_m),
+                                     stack_heights_, tolerance_m);
   std::vector<char> stands(types.size(), 0);
   for (const BrickType* pose : standing_poses) stands[type_of[pose - poses.data()]] = 1;
   TypesAtHeight result;
@@ -288,7 +296,7 @@ RoiFilter::TypesAtHeight RoiFilter::typesStandingWhereTheFaceIs(const RgbdFrame&
   // The poses standing there most exactly (as closestType weighs them):
   // when they all show the top of one type on its bottom, a cut the tiler
   // made at that size is placed.
-  const std::vector<double> misfits_m = standingMisfitsM(standing_poses, standing->height_m, stack_heights_);
+  const std::vector<double> misfits_m = standingMisfitsM(standing_poses, height_m, stack_heights_);
   const double least_m = *std::min_element(misfits_m.begin(), misfits_m.end());
   const BrickType* first = nullptr;
   result.one_top_size = true;
@@ -321,10 +329,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
 {
   const bool typed_by_size = segment.type_name.empty();
   const std::vector<const BrickType*> all_types = only_types ? *only_types : typesFor(catalogue_, segment.type_name);
-  const TypesAtHeight at_height = typed_by_size ? typesStandingWhereTheFaceIs(frame, context, measured, all_types)
-                                                : TypesAtHeight{all_types, false};
-  const std::vector<const BrickType*>& types = at_height.types;
-  if (types.empty()) return std::nullopt;
+  if (all_types.empty()) return std::nullopt;
   if (typed_by_size && !isRaisedLayer(measured.edge_kinds, clearOfImageBorder(segment, frame, params_.edges.probe_px)) &&
       !standsUpFromItsSurroundings(frame, segment, measured.plane))
     return std::nullopt;
@@ -332,8 +337,11 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   // nothing could be a seam across it, or no brick could lie between its
   // seen ends and possible seams, tiling would keep nothing.
   if (typed_by_size && !seams_required && anyTruncated(measured) && oneTileWide(measured) &&
-      !mayCutAWholeBrick(frame, segment, measured, types))
+      !mayCutAWholeBrick(frame, segment, measured, all_types))
     return std::nullopt;
+  const TypesAtHeight at_height = typed_by_size ? typesStandingWhereTheFaceIs(frame, context, measured, all_types)
+                                                : TypesAtHeight{all_types, false};
+  const std::vector<const BrickType*>& types = at_height.types;
   // Read once: the seam reading and the tiles' plainness both start from it.
   const ColourUniformity face_uniformity =
       measureColourUniformity(frame, segment.mask, segment.bounding_box_px, params_.uniformity);

@@ -231,13 +231,17 @@ std::optional<std::string> RoiFilter::heightRulesOutType(const RgbdFrame& frame,
     if (showsTop(variant, candidate.length_m, candidate.width_m, params_.classification_tolerance_m))
       shown.push_back(&variant);
   }
-  const std::optional<StandingHeight> standing = standingHeight(frame, context, candidate, all);
-  if (!standing ||
-      !typesStandingAt(shown, standing->height_m, standing->levels_m, stack_heights_, tolerance_m).empty())
+  // Nothing stands there (a plinth?), or something showing its top does:
+  // checked without the levels first, which only add places to stand.
+  if (typesStandingAt(all, height_m, {}, stack_heights_, tolerance_m).empty() ||
+      !typesStandingAt(shown, height_m, {}, stack_heights_, tolerance_m).empty())
     return std::nullopt;
+  const std::vector<double> levels_m =
+      levelsAroundFoot(frame, candidate.mask, candidate.bounding_box_px, candidate.plane, context.up, tolerance_m);
+  if (!typesStandingAt(shown, height_m, levels_m, stack_heights_, tolerance_m).empty()) return std::nullopt;
   std::ostringstream text;
   text.precision(3);
-  text << "its top is " << standing->height_m << " m above the support, where no " << own->name << " ("
+  text << "its top is " << height_m << " m above the support, where no " << own->name << " ("
        << own->height_m << " m tall) stands: smaller boxes side by side may make it up";
   return text.str();
 }
