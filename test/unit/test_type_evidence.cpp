@@ -111,6 +111,32 @@ TEST(TypeEvidence, AmongEqualFitsTheTypeStandingExactlyAtTheFacesHeightOnFewestI
   EXPECT_EQ(closestType(flat_first, 0.30, 0.20, {side(0.15, true)}, {0.0, 0.01}), &kSmall);
 }
 
+TEST(TypeEvidence, ASideEndingAtATypesOwnHeightBreaksATieOfStandingMisfits)
+{
+  // A top 0.22 m up on a stack: a flat box on a tall one or a tall box on a
+  // flat one, each on one item, exactly: the standing misfits tie.
+  const StackHeights stacks = StackHeights::of({kSmall, kFlat});
+  const std::vector<double> misfits_m{standingMisfitM(kSmall, 0.22, stacks), standingMisfitM(kFlat, 0.22, stacks)};
+  ASSERT_NEAR(misfits_m[0], misfits_m[1], 1e-9);
+  const std::vector<const BrickType*> small_first{&kSmall, &kFlat};
+  // Nothing seen: the order given decides.
+  EXPECT_EQ(closestType(small_first, 0.30, 0.20, {}, misfits_m), &kSmall);
+  // A side 0.07 m tall ending on a ledge: the flat box's whole side on the
+  // box beneath, or a tall box's upper half over a neighbour exactly that
+  // high. The flat box is the likelier, in either order.
+  EXPECT_EQ(closestType(small_first, 0.30, 0.20, {side(0.07, false)}, misfits_m), &kFlat);
+  EXPECT_EQ(closestType({&kFlat, &kSmall}, 0.30, 0.20, {side(0.07, false)}, {misfits_m[1], misfits_m[0]}), &kFlat);
+  // A side 0.15 m tall is more than a flat box has.
+  EXPECT_EQ(closestType({&kFlat, &kSmall}, 0.30, 0.20, {side(0.15, false)}, {misfits_m[1], misfits_m[0]}), &kSmall);
+  // The tie-break is less than an item beneath: a tall box exactly on the
+  // support still beats a flat one on an item (0.15 m up).
+  EXPECT_EQ(closestType({&kFlat, &kSmall}, 0.30, 0.20, {side(0.07, false)},
+                        {standingMisfitM(kFlat, 0.15, stacks), standingMisfitM(kSmall, 0.15, stacks)}),
+            &kSmall);
+  // And the doubt stays: the evidence rules neither out.
+  EXPECT_FALSE(typeDoubt(small_first, kFlat, 0.30, 0.20, {side(0.07, false)}).empty());
+}
+
 TEST(TypeEvidence, NearlyEqualFitsLeaveADoubtAndClearOnesDoNot)
 {
   const BrickType upright = box("upright", 0.128, 0.038, 0.212);

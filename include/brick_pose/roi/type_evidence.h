@@ -21,6 +21,12 @@ namespace brick_pose
 /// sides within 6 mm of the catalogue height and tops within about 12 mm.
 constexpr double kTypeMarginM = 0.015;
 
+/// What a side seen ending on something other than the support, shorter
+/// than a type by kTypeMarginM or more, adds to that type's misfit (m): the
+/// type needs the rest of its side hidden by a neighbour exactly as high as
+/// the side's foot. Less than kStackItemPenaltyM: it only breaks ties.
+constexpr double kHiddenSidePenaltyM = 0.005;
+
 /// Whether `type`'s top (or a lying variant's face up) is a face of
 /// `length_m` x `width_m`, each within `tolerance_m`.
 bool showsTop(const BrickType& type, double length_m, double width_m, double tolerance_m);

@@ -60,8 +60,15 @@ const BrickType* closestType(const std::vector<const BrickType*>& fitting, doubl
     const BrickType& type = *fitting[i];
     double error_m = topErrorM(type, length_m, width_m);
     for (const SideFaceEvidence& side : sides)
+    {
       error_m += side.foot_on_support ? std::abs(side.visible_height_m - type.height_m)
                                       : std::max(0.0, side.visible_height_m - type.height_m);
+      // A type taller than a side ending on something needs the rest of
+      // its side hidden there by a neighbour just that high: among types
+      // otherwise tied, the one the side ends at the bottom of is likelier.
+      if (!side.foot_on_support && type.height_m > side.visible_height_m + kTypeMarginM)
+        error_m += kHiddenSidePenaltyM;
+    }
     if (i < standing_misfits_m.size()) error_m += standing_misfits_m[i];
     if (!best || error_m < best_error_m)  // (a NaN error never wins)
     {
