@@ -528,26 +528,25 @@ sim::Scene smallBoxesOnTheGround(const std::vector<Eigen::Vector2d>& centres_xy)
   return row;
 }
 
-/// Colour-free candidates of `row` (D4xx depth, the ground given).
-std::vector<BrickCandidate> touchingSmallBoxesOnTheGround(const sim::Scene& row)
+/// Colour-free candidates of `boxes` (D4xx depth, the ground given).
+std::vector<BrickCandidate> colourFreeCandidatesOnTheGround(const sim::Scene& boxes, const BrickCatalogue& catalogue)
 {
   FrontEndParams params;
   params.mode = SegmentationMode::kColourFree;
-  params.roi.up_direction = worldUpInCamera(row);
-  params.roi.support_plane = groundInCamera(row);
-  return FrontEnd(BrickCatalogue::fromYamlString(kSmallAndLargeBoxes), params)
-      .process(render(row, sim::SensorModel::d4xx()).frame)
-      .candidates;
+  params.roi.up_direction = worldUpInCamera(boxes);
+  params.roi.support_plane = groundInCamera(boxes);
+  return FrontEnd(catalogue, params).process(render(boxes, sim::SensorModel::d4xx()).frame).candidates;
 }
 
-/// Whether a candidate's centre lies within `within_m` of a box_small's top
-/// centre at one of `centres_xy` (the camera frame of `row`).
-bool onASmallBoxTop(const BrickCandidate& candidate, const sim::Scene& row,
-                    const std::vector<Eigen::Vector2d>& centres_xy, double within_m)
+/// Whether a candidate's centre lies within `within_m` of a top centre at
+/// one of `centres_xy`, `top_z_m` up (`boxes`' camera frame).
+bool onATop(const BrickCandidate& candidate, const sim::Scene& boxes, const std::vector<Eigen::Vector2d>& centres_xy,
+            double top_z_m, double within_m)
 {
-  const Eigen::Isometry3d camera_T_world = row.world_T_camera.inverse();
+  const Eigen::Isometry3d camera_T_world = boxes.world_T_camera.inverse();
   for (const Eigen::Vector2d& xy : centres_xy)
-    if ((candidate.centroid_m - camera_T_world * Eigen::Vector3d(xy.x(), xy.y(), 0.15)).norm() <= within_m) return true;
+    if ((candidate.centroid_m - camera_T_world * Eigen::Vector3d(xy.x(), xy.y(), top_z_m)).norm() <= within_m)
+      return true;
   return false;
 }
 
@@ -562,7 +561,8 @@ TEST(TopFaceCheck, TwoSmallBoxesTouchingAreNoLargeBoxWhereNoneCouldStandAndAreCu
   for (const std::vector<Eigen::Vector2d>& centres_xy : layouts)
   {
     const sim::Scene row = smallBoxesOnTheGround(centres_xy);
-    const std::vector<BrickCandidate> candidates = touchingSmallBoxesOnTheGround(row);
+    const std::vector<BrickCandidate> candidates =
+        colourFreeCandidatesOnTheGround(row, BrickCatalogue::fromYamlString(kSmallAndLargeBoxes));
     int on_tops = 0;
     for (const BrickCandidate& candidate : candidates)
     {
@@ -570,9 +570,39 @@ TEST(TopFaceCheck, TwoSmallBoxesTouchingAreNoLargeBoxWhereNoneCouldStandAndAreCu
       EXPECT_EQ(candidate.type_name, "box_small") << candidate.partial_reason;
       EXPECT_NE(candidate.partial_reason.find("the one top standing at its height"), std::string::npos)
           << candidate.partial_reason;
-      on_tops += onASmallBoxTop(candidate, row, centres_xy, 0.03);
+      on_tops += onATop(candidate, row, centres_xy, 0.15, 0.03);
     }
     EXPECT_EQ(on_tops, 2) << candidates.size() << " candidates, layout at " << centres_xy[1].transpose();
+  }
+}
+
+TEST(TopFaceCheck, LargeBoxesTouchingAreCutIntoTheTypeStandingMostExactlyAtTheirHeight)
+{
+  // End to end, or four in a square, box_large tops 0.25 m up also tile as
+  // 0.30 x 0.20 m tops turned across. A box_flat with that top could be
+  // there only on a box lying on a side (0.20 m, 2 cm off, within the
+  // height tolerance), where a box_large stands exactly on the ground: the
+  // faces are cut into box_large tops (partial: no seam shows).
+  const BrickCatalogue catalogue = BrickCatalogue::fromYamlString(R"(bricks:
+  - {name: box_large, length_m: 0.40, width_m: 0.30, height_m: 0.25}
+  - {name: box_flat, length_m: 0.30, width_m: 0.20, height_m: 0.07}
+)");
+  const std::vector<std::vector<Eigen::Vector2d>> layouts{
+      {{-0.20, 0.0}, {0.20, 0.0}}, {{-0.20, -0.15}, {0.20, -0.15}, {-0.20, 0.15}, {0.20, 0.15}}};
+  for (const std::vector<Eigen::Vector2d>& centres_xy : layouts)
+  {
+    std::vector<std::tuple<std::string, Eigen::Vector3d, double>> boxes;
+    for (const Eigen::Vector2d& xy : centres_xy) boxes.emplace_back("box_large", Eigen::Vector3d(xy.x(), xy.y(), 0.25), 0.0);
+    sim::Scene layer = scene(boxes, 80.0, catalogue);
+    layer.world_T_camera = sim::lookAt(Eigen::Vector3d(0.0, 0.0, 0.25), 1.5, 80.0, 25.0);
+    int on_tops = 0;
+    for (const BrickCandidate& candidate : colourFreeCandidatesOnTheGround(layer, catalogue))
+    {
+      EXPECT_FALSE(candidate.complete) << candidate.partial_reason;
+      EXPECT_EQ(candidate.type_name, "box_large") << candidate.length_m << " x " << candidate.width_m;
+      on_tops += onATop(candidate, layer, centres_xy, 0.25, 0.03);
+    }
+    EXPECT_EQ(on_tops, static_cast<int>(centres_xy.size()));
   }
 }
 

@@ -99,6 +99,44 @@ std::vector<const BrickType*> typesFor(const BrickCatalogue& catalogue, const st
     if (type_name.empty() || type.name == type_name) types.push_back(&type);
   return types;
 }
+/// Each of some types on its bottom, then lying on a side or standing on
+/// an end (lyingVariants), and which type each pose is of.
+struct TypePoses
+{
+  std::vector<const BrickType*> types;
+  std::vector<BrickType> poses;
+  std::vector<std::size_t> type_of;  ///< per pose, its type's index in `types`
+
+  std::vector<const BrickType*> pointers() const
+  {
+    std::vector<const BrickType*> result;
+    for (const BrickType& pose : poses) result.push_back(&pose);
+    return result;
+  }
+  /// The types of `of` (poses of these), each once, in the types' order.
+  std::vector<const BrickType*> typesOf(const std::vector<const BrickType*>& of) const
+  {
+    std::vector<char> kept(types.size(), 0);
+    for (const BrickType* pose : of) kept[type_of[static_cast<std::size_t>(pose - poses.data())]] = 1;
+    std::vector<const BrickType*> result;
+    for (std::size_t t = 0; t < types.size(); ++t)
+      if (kept[t]) result.push_back(types[t]);
+    return result;
+  }
+};
+
+TypePoses posesOf(const std::vector<const BrickType*>& types)
+{
+  TypePoses result;
+  result.types = types;
+  for (std::size_t t = 0; t < types.size(); ++t)
+  {
+    result.poses.push_back(*types[t]);
+    for (BrickType& variant : lyingVariants({*types[t]})) result.poses.push_back(std::move(variant));
+    result.type_of.resize(result.poses.size(), t);
+  }
+  return result;
+}
 }  // namespace
 
 RoiFilter::SeamReading RoiFilter::seamReadingFor(const ColourUniformity& face_uniformity, double face_grey) const
@@ -266,52 +304,40 @@ RoiFilter::TypesAtHeight RoiFilter::typesStandingWhereTheFaceIs(const RgbdFrame&
   // box_large (0.25 m tall) has its top there, on its bottom, a side or an
   // end. Without a support, or where none of the types could stand (a
   // plinth under the pile), all stay.
-  std::vector<BrickType> poses;  // each type on its bottom, then lying
-  std::vector<std::size_t> type_of;
-  for (std::size_t t = 0; t < types.size(); ++t)
-  {
-    poses.push_back(*types[t]);
-    for (BrickType& variant : lyingVariants({*types[t]})) poses.push_back(std::move(variant));
-    type_of.resize(poses.size(), t);
-  }
-  std::vector<const BrickType*> shown;
-  for (const BrickType& pose : poses) shown.push_back(&pose);
   const double tolerance_m = params_.height_above_support_tolerance_m;
   if (!(tolerance_m > 0.0) || !context.up.support_given) return {types, false};
+  const TypePoses poses = posesOf(types);
+  const std::vector<const BrickType*> shown = poses.pointers();
   const double height_m = context.up.heightAboveSupport(face.centroid_m);
-  std::vector<const BrickType*> standing_poses = typesStandingAt(shown, height_m, {}, stack_heights_, tolerance_m);
-  if (standing_poses.empty()) return {types, false};
+  std::vector<const BrickType*> standing = typesStandingAt(shown, height_m, {}, stack_heights_, tolerance_m);
+  if (standing.empty()) return {types, false};
   // The levels around its foot (read only when they may add a pose) are
   // more places to stand.
-  if (standing_poses.size() < shown.size())
-    standing_poses = typesStandingAt(shown, height_m,
-                                     levelsAroundFoot(frame, face.mask, face.bounding_box_px, face.plane, context.up,
-                                                      tolerance_m),
-                                     stack_heights_, tolerance_m);
-  std::vector<char> stands(types.size(), 0);
-  for (const BrickType* pose : standing_poses) stands[type_of[pose - poses.data()]] = 1;
-  TypesAtHeight result;
-  for (std::size_t t = 0; t < types.size(); ++t)
-    if (stands[t]) result.types.push_back(types[t]);
-  // The poses standing there most exactly (as closestType weighs them):
-  // when they all show the top of one type on its bottom, a cut the tiler
-  // made at that size is placed.
-  const std::vector<double> misfits_m = standingMisfitsM(standing_poses, height_m, stack_heights_);
+  if (standing.size() < shown.size())
+    standing = typesStandingAt(
+        shown, height_m, levelsAroundFoot(frame, face.mask, face.bounding_box_px, face.plane, context.up, tolerance_m),
+        stack_heights_, tolerance_m);
+  // The poses standing there most exactly, as closestType weighs them.
+  const std::vector<double> misfits_m = standingMisfitsM(standing, height_m, stack_heights_);
   const double least_m = *std::min_element(misfits_m.begin(), misfits_m.end());
-  const BrickType* first = nullptr;
-  result.one_top_size = true;
-  for (std::size_t i = 0; i < standing_poses.size(); ++i)
-  {
-    if (misfits_m[i] > least_m + kTypeMarginM) continue;
-    if (!first) first = standing_poses[i];
-    result.one_top_size = result.one_top_size && showsTop(*standing_poses[i], first->length_m, first->width_m,
-                                                          params_.dimensions.tolerance_m);
-  }
-  // The tiler lays types on their bottoms: a lying box's face is no tile.
-  result.one_top_size = result.one_top_size && first &&
-                        std::any_of(result.types.begin(), result.types.end(), [&](const BrickType* type) {
-                          return showsTop(*type, first->length_m, first->width_m, params_.dimensions.tolerance_m);
-                        });
+  std::vector<const BrickType*> exact;
+  for (std::size_t i = 0; i < standing.size(); ++i)
+    if (misfits_m[i] <= least_m + kTypeMarginM) exact.push_back(standing[i]);
+  // Types standing there clearly less exactly than another (a box_flat
+  // 0.25 m up needs a box lying on a side beneath, 2 cm off, where a
+  // box_large stands on the ground) are no tiles: two such tops side by
+  // side make the exact one's. (A box lying exactly there is a tile too:
+  // its face may be near its top's size.)
+  TypesAtHeight result;
+  result.types = poses.typesOf(exact);
+  // The exact poses all show one top, a type's on its bottom (the tiler
+  // lays no lying box's face): a cut the tiler made at that size is placed.
+  const BrickType& top = *exact.front();
+  auto showsThatTop = [&](const BrickType* pose) {
+    return showsTop(*pose, top.length_m, top.width_m, params_.dimensions.tolerance_m);
+  };
+  result.one_top_size = std::all_of(exact.begin(), exact.end(), showsThatTop) &&
+                        std::any_of(result.types.begin(), result.types.end(), showsThatTop);
   return result;
 }
 
