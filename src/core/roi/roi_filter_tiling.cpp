@@ -311,15 +311,20 @@ RoiFilter::TypesAtHeight RoiFilter::typesStandingWhereTheFaceIs(const RgbdFrame&
   const double height_m = context.up.heightAboveSupport(face.centroid_m);
   std::vector<const BrickType*> standing = typesStandingAt(shown, height_m, {}, stack_heights_, tolerance_m);
   if (standing.empty()) return {types, false};
-  // The levels around its foot (read only when they may add a pose) are
-  // more places to stand.
-  if (standing.size() < shown.size())
+  // The poses standing there most exactly, as closestType weighs them.
+  std::vector<double> misfits_m = standingMisfitsM(standing, height_m, stack_heights_);
+  double least_m = *std::min_element(misfits_m.begin(), misfits_m.end());
+  // A level around the foot (a deck, a plinth) is one more place to stand,
+  // but a pose standing only there misfits the support's stacks by more
+  // than the tolerance: read only where that could still be exact.
+  if (least_m + kTypeMarginM >= tolerance_m && standing.size() < shown.size())
+  {
     standing = typesStandingAt(
         shown, height_m, levelsAroundFoot(frame, face.mask, face.bounding_box_px, face.plane, context.up, tolerance_m),
         stack_heights_, tolerance_m);
-  // The poses standing there most exactly, as closestType weighs them.
-  const std::vector<double> misfits_m = standingMisfitsM(standing, height_m, stack_heights_);
-  const double least_m = *std::min_element(misfits_m.begin(), misfits_m.end());
+    misfits_m = standingMisfitsM(standing, height_m, stack_heights_);
+    least_m = *std::min_element(misfits_m.begin(), misfits_m.end());
+  }
   std::vector<const BrickType*> exact;
   for (std::size_t i = 0; i < standing.size(); ++i)
     if (misfits_m[i] <= least_m + kTypeMarginM) exact.push_back(standing[i]);
