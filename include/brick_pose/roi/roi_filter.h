@@ -320,8 +320,10 @@ private:
     bool one_top_size = false;
   };
   /// Those of `types` whose top could be at `face`'s height above the
-  /// given support (typesStandingAt, levels around its foot included);
-  /// `types` (one_top_size false) when no support is given or none could.
+  /// given support, on their bottom, a side or an end (typesStandingAt,
+  /// levels around its foot included), most exactly: within kTypeMarginM
+  /// of the least standingMisfitM. `types` (one_top_size false) when no
+  /// support is given or none could stand there.
   TypesAtHeight typesStandingWhereTheFaceIs(const RgbdFrame& frame, const FrameContext& context,
                                             const BrickCandidate& face,
                                             const std::vector<const BrickType*>& types) const;
