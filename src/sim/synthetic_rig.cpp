@@ -97,6 +97,7 @@ public:
     frame.rgb = shade(geometry);
     frame.depth_mm = measureDepth(geometry);
     frame.truth = groundTruth(frame);
+    frame.camera_T_ground = scene_.world_T_camera.inverse();
     return frame;
   }
 

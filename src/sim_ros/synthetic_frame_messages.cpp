@@ -49,6 +49,11 @@ SyntheticFrameMessages toMessages(const sim::SyntheticFrame& frame, const ros::T
     transform.transform = tf2::eigenToTransform(truth.camera_T_brick).transform;
     messages.truth_frames.push_back(transform);
   }
+  geometry_msgs::TransformStamped ground;
+  ground.header = header;
+  ground.child_frame_id = kTruthGroundFrame;
+  ground.transform = tf2::eigenToTransform(frame.camera_T_ground).transform;
+  messages.truth_frames.push_back(ground);
   return messages;
 }
 

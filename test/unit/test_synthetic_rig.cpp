@@ -132,6 +132,31 @@ TEST(SyntheticRig, TopFaceCornersBackProjectOntoTheTrueCorners)
   EXPECT_NEAR(frame.truth[0].visible_fraction, 1.0, 0.02);
 }
 
+TEST(SyntheticRig, TheGroundFrameIsWhereTheScenesBricksStand)
+{
+  // Every brick of a pile rests on the ground or on another: seen from the
+  // ground frame the frame gives, its top is its height, or more, above
+  // z = 0, and its bottom at 0 or on something; the lowest bottom is 0.
+  SceneParams params;
+  params.kind = SceneKind::kOrganisedPile;
+  const Scene scene = SceneGenerator(BrickCatalogue::mbzirc2020(), params).generate(7);
+  SensorModel sensor;
+  const SyntheticFrame frame = defaultRig(sensor).render(scene, 7);
+  ASSERT_EQ(frame.truth.size(), scene.bricks.size());
+  const Eigen::Isometry3d ground_T_camera = frame.camera_T_ground.inverse();
+  double lowest_bottom_m = 1e9;
+  for (const BrickTruth& truth : frame.truth)
+  {
+    const Eigen::Isometry3d ground_T_brick = ground_T_camera * truth.camera_T_brick;
+    // Flat in a pile: the brick's z is the ground's.
+    EXPECT_GT(ground_T_brick.linear().col(2).z(), std::cos(15.0 * M_PI / 180.0));
+    const double bottom_m = ground_T_brick.translation().z() - truth.dimensions_m.z();
+    EXPECT_GT(bottom_m, -1e-6);
+    lowest_bottom_m = std::min(lowest_bottom_m, bottom_m);
+  }
+  EXPECT_NEAR(lowest_bottom_m, 0.0, 0.01);
+}
+
 TEST(SyntheticRig, SameSeedGivesIdenticalFrames)
 {
   SceneParams params;

@@ -28,6 +28,9 @@ struct SyntheticFrame
   cv::Mat instance_labels;  ///< CV_16UC1: 0 ground or nothing, i + 1 for Scene::bricks[i]
   cv::Mat face_labels;      ///< CV_8UC1: a CuboidFace value
   std::vector<BrickTruth> truth;  ///< one per brick, in Scene::bricks order
+  /// The ground the scene stands on (world z = 0, +z up) in the camera
+  /// frame: its xy-plane is what a user gives as support_frame.
+  Eigen::Isometry3d camera_T_ground = Eigen::Isometry3d::Identity();
 };
 
 class SyntheticRig

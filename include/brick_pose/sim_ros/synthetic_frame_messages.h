@@ -24,8 +24,14 @@ struct SyntheticFrameMessages
   sensor_msgs::ImagePtr depth;  // 16UC1, millimetres, aligned to colour
   sensor_msgs::CameraInfoPtr depth_info;
   BrickTruthArrayPtr truth;
-  std::vector<geometry_msgs::TransformStamped> truth_frames;  // truth_<type>_<instance>
+  /// truth_<type>_<instance>, then the ground (kTruthGroundFrame).
+  std::vector<geometry_msgs::TransformStamped> truth_frames;
 };
+
+/// tf child frame of the ground the rig's scene stands on (+z up): give it
+/// as support_frame to run a scene with its ground known, as the benchmark
+/// does.
+constexpr const char* kTruthGroundFrame = "truth_ground";
 
 SyntheticFrameMessages toMessages(const sim::SyntheticFrame& frame, const ros::Time& stamp,
                                   const std::string& optical_frame_id);
