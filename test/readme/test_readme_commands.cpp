@@ -251,6 +251,9 @@ TEST_F(ReadmeCommands, BoxPalletWithTheRigsGroundGivesBoxes)
   // (truth_ground) given as support_frame: boxes are detected, of the box
   // catalogue's types only.
   const std::string command = readmeLine("roslaunch brick_pose demo.launch", "support_frame:=truth_ground");
+  // The bag tests' launches set /use_sim_time on the suite's master; a user
+  // runs the demo on a master of their own, where it is unset.
+  ros::param::del("/use_sim_time");
   auto pipeline = launch(command, "box_pallet.log");
   ros::NodeHandle node;
   std::mutex mutex;
@@ -267,11 +270,8 @@ TEST_F(ReadmeCommands, BoxPalletWithTheRigsGroundGivesBoxes)
       << readFile(bag_dir_ + "/box_pallet.log");
   std::lock_guard<std::mutex> lock(mutex);
   for (const std::string& type : types) EXPECT_EQ(type.rfind("box_", 0), 0u) << type;
-  // (The first frames may come before the ground's tf: the ingestion stage
-  // then warns once; that the plane reaches the frames is support_frame.test's.)
-  const std::string log = readFile(bag_dir_ + "/box_pallet.log");
-  EXPECT_NE(log.find("stands on the xy-plane of truth_ground"), std::string::npos) << log;
-  EXPECT_TRUE(pipeline->running()) << log;
+  // (That the ground's plane reaches the frames is support_frame.test's.)
+  EXPECT_TRUE(pipeline->running()) << readFile(bag_dir_ + "/box_pallet.log");
 }
 
 TEST_F(ReadmeCommands, DemoScriptWithTheReadmesArguments)
