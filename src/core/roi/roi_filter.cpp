@@ -25,6 +25,7 @@
 
 namespace brick_pose
 {
+using roi_internal::addTypeDoubt;
 using roi_internal::anyTruncated;
 using roi_internal::describe;
 using roi_internal::partRejection;
@@ -374,7 +375,7 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
       // doubt, never complete.
       if (std::optional<RoiOutcome> tiled = tile(frame, segment, candidate, context, false, cloud_timings))
         return std::move(*tiled);
-      candidate.type_doubt = candidate.type_doubt.empty() ? *ruled_out : *ruled_out + "; " + candidate.type_doubt;
+      addTypeDoubt(candidate, *ruled_out);
     }
   if (!reason)
   {

@@ -38,5 +38,10 @@ std::string truncation(const BrickCandidate& candidate)
     if (candidate.edge_truncated[k]) return "edge " + std::to_string(k) + ": " + toString(candidate.edge_kinds[k]);
   return "no edge";
 }
+
+void addTypeDoubt(BrickCandidate& candidate, const std::string& doubt)
+{
+  candidate.type_doubt = candidate.type_doubt.empty() ? doubt : doubt + "; " + candidate.type_doubt;
+}
 }  // namespace roi_internal
 }  // namespace brick_pose

@@ -53,5 +53,8 @@ bool anyTruncated(const BrickCandidate& candidate);
 
 /// "edge 2: occlusion boundary" for the first truncated edge.
 std::string truncation(const BrickCandidate& candidate);
+
+/// Puts `doubt` first in the candidate's type_doubt, before any it had.
+void addTypeDoubt(BrickCandidate& candidate, const std::string& doubt);
 }  // namespace roi_internal
 }  // namespace brick_pose

@@ -23,6 +23,7 @@
 
 namespace brick_pose
 {
+using roi_internal::addTypeDoubt;
 using roi_internal::describe;
 using roi_internal::partRejection;
 using roi_internal::anyTruncated;
@@ -454,7 +455,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
       // has one top there. A doubt, so the tile is never complete.
       const std::string doubt = "cut " + std::to_string(unseen) +
                                 " from its neighbour shows no seam: its size is the one top standing at its height";
-      candidate.type_doubt = candidate.type_doubt.empty() ? doubt : doubt + "; " + candidate.type_doubt;
+      addTypeDoubt(candidate, doubt);
     }
     if (!reason) judgeCompleteness(frame, context, !typed_by_size || plain[k], candidate);
     if (!reason && typed_by_size) doubtComposedTop(frame, plain[k] != 0, true, candidate);

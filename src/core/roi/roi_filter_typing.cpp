@@ -23,6 +23,7 @@
 
 namespace brick_pose
 {
+using roi_internal::addTypeDoubt;
 using roi_internal::describe;
 using roi_internal::sideAxis;
 using roi_internal::anyTruncated;
@@ -204,7 +205,7 @@ std::optional<std::string> RoiFilter::typeCutOffFace(const RgbdFrame& frame, con
   if (type && !fitsClosely(*type))
     return cut + "; its visible part is no " + type->name + " top within the dimension tolerance";
   const std::string doubt = "it is cut off, and its type is the one its visible part fits (a larger one's part may look so)";
-  candidate.type_doubt = candidate.type_doubt.empty() ? doubt : doubt + "; " + candidate.type_doubt;
+  addTypeDoubt(candidate, doubt);
   return std::nullopt;
 }
 
