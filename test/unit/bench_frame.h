@@ -74,6 +74,7 @@ struct WholeTops
 {
   int whole = 0;
   int found = 0;
+  int found_complete = 0;  ///< found and marked complete (pickable)
 };
 
 inline WholeTops palletLayerBenchFrame(int frame, const std::string& resolution)
@@ -87,6 +88,7 @@ inline WholeTops palletLayerBenchFrame(int frame, const std::string& resolution)
   {
     tops.whole += top.whole_in_view ? 1 : 0;
     tops.found += top.whole_in_view && top.found ? 1 : 0;
+    tops.found_complete += top.whole_in_view && top.found_complete ? 1 : 0;
   }
   for (const eval::CandidateMatch& candidate : match.candidates) EXPECT_FALSE(candidate.false_complete);
   return tops;

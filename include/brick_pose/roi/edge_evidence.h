@@ -49,12 +49,15 @@ enum class EdgeKind : std::uint8_t
                     ///< walls standing on the edge that the camera sees (hiding none of the face):
                     ///< the drop shows the face ends at this line, so the walls stand beside it
                     ///< (neighbours), not on it. A low box beside the end of a taller row.
+  kSizePlacedLine,  ///< A colour line on a printed face that the catalogue's sizes place as the box's
+                    ///< end (see size_placed_edge.h); set by RoiFilter, never by classifyEdge().
 };
 
 /// True for the kinds that show where a brick ends: a step down, a crease,
 /// a seam, a step up to a wall (once RoiFilter has ruled out, by its
-/// height, that it rests on the face), and a colour line only on a face of uniform colour (a plate
-/// found by its colour), not on printed boxes where lines are everywhere.
+/// height, that it rests on the face), a line the catalogue's sizes place,
+/// and a colour line only on a face of uniform colour (a plate found by its
+/// colour), not on printed boxes where lines are everywhere.
 bool isRealEdge(EdgeKind kind, bool uniform_colour = false);
 /// Short name: "step down", "crease", "seam", "occlusion boundary", ...
 std::string toString(EdgeKind kind);
@@ -159,6 +162,14 @@ struct EdgeEvidence
 /// sees or drop away, with a drop among them, are kDropBesideWall; any
 /// other mix with a wall is an occlusion.
 EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
+                          const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
+                          const EdgeEvidenceParams& params = EdgeEvidenceParams());
+
+/// Share of the stretches of the line from `a_px` to `b_px` across a face
+/// (both sides on `plane`) that show the plane going on with nothing
+/// marking it (kMaskEdge): no line, groove or step, no border, occluder or
+/// missing depth. A box does not end along a line mostly so.
+double unmarkedShareAlong(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
                           const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
                           const EdgeEvidenceParams& params = EdgeEvidenceParams());
 

@@ -91,6 +91,13 @@ struct RoiFilterParams
   /// are as faint in proportion. Printed faces keep the absolute floor
   /// (their lines are print). 0 keeps edges.min_line_contrast everywhere.
   double plain_seam_line_share = 0.06;
+  /// On a printed face a colour line ends the box where the catalogue's
+  /// sizes place it (size_placed_edge.h), and only on a face whose length
+  /// and width are both within this of its type's: the premise is that a
+  /// catalogue box lies there, and a face the tolerance's 3 cm off may be
+  /// part of a box the catalogue lacks (a real tea box's top, cut into
+  /// smaller ones along its print). 0: lines on printed faces never end one.
+  double size_placed_line_tolerance_m = 0.015;
   /// On a plain face, a cut seen but too short to confirm alone is
   /// confirmed with the cuts continuing it on one line (see
   /// FaceTilingParams::confirm_along_lines).
@@ -255,6 +262,13 @@ private:
   std::optional<StandingHeight> standingHeight(const RgbdFrame& frame, const FrameContext& context,
                                                const BrickCandidate& candidate,
                                                const std::vector<const BrickType*>& shown) const;
+  /// The extents a box whose top is `face`'s may have across an edge: the
+  /// lengths and widths of the catalogue's poses (bottom, side, end)
+  /// standing most exactly at its height (posesStandingMostExactly: the
+  /// tops the tiler would lay there), or, without a height that tells,
+  /// every catalogue extent.
+  std::vector<double> extentsStandingThere(const RgbdFrame& frame, const FrameContext& context,
+                                           const BrickCandidate& face) const;
   /// The side faces below the face's real edges (steps down, creases) seen
   /// down to their foot, measured up to `tallest_m`.
   std::vector<SideFaceEvidence> sidesSeenToTheirFoot(const RgbdFrame& frame, const FrameContext& context,
@@ -278,14 +292,21 @@ private:
   /// Without `plain`, the face's own pixels are read, and only for a top
   /// that smaller ones make up in a layer. A doubted face's type is in doubt
   /// too (`type_doubt`): one brick, or several smaller ones.
-  void doubtComposedTop(const RgbdFrame& frame, std::optional<bool> plain, bool in_layer,
-                        BrickCandidate& candidate) const;
+  /// Only smaller types standing at the face's height as exactly as any
+  /// (typesStandingWhereTheFaceIs) make it up.
+  void doubtComposedTop(const RgbdFrame& frame, const FrameContext& context, std::optional<bool> plain,
+                        bool in_layer, BrickCandidate& candidate) const;
   /// Sets `complete` and `partial_reason` of a typed candidate (a reason
   /// from an edge names its `type_doubt` too, if any);
   /// `uniform_colour`: found by its plate colour, so a dark line along an
   /// edge is a seam (on printed boxes it may be print).
   void judgeCompleteness(const RgbdFrame& frame, const FrameContext& context, bool uniform_colour,
                          BrickCandidate& candidate) const;
+  /// What judgeCompleteness doubts of a face whose edges all end it: its
+  /// plane going on outside the segment, a size not its type's, no up
+  /// direction, or a type in doubt; nothing when none of these.
+  std::optional<std::string> shapeDoubt(const RgbdFrame& frame, const FrameContext& context, const BrickType& type,
+                                        const BrickCandidate& candidate) const;
   /// A measured face larger than one brick, cut into bricks: tiled (see
   /// tile()), or for a colour segment cut along its rows (see
   /// splitSideBySide()); empty when neither finds two bricks.
@@ -324,6 +345,14 @@ private:
   /// levels around its foot included), most exactly: within kTypeMarginM
   /// of the least standingMisfitM. `types` (one_top_size false) when no
   /// support is given or none could stand there.
+  /// The poses of `shown` whose top could be at `face`'s height above the
+  /// given support (typesStandingAt, levels around its foot read only where
+  /// a pose standing on one could still be exact), within kTypeMarginM of
+  /// the least standingMisfitM; nothing when no support is given or none
+  /// could stand there.
+  std::optional<std::vector<const BrickType*>> posesStandingMostExactly(
+      const RgbdFrame& frame, const FrameContext& context, const BrickCandidate& face,
+      const std::vector<const BrickType*>& shown) const;
   TypesAtHeight typesStandingWhereTheFaceIs(const RgbdFrame& frame, const FrameContext& context,
                                             const BrickCandidate& face,
                                             const std::vector<const BrickType*>& types) const;
@@ -374,6 +403,9 @@ private:
   /// The heights stacks of catalogue items make: what a colour-free face's
   /// height above the supporting plane allows of its type.
   StackHeights stack_heights_;
+  /// Every extent a catalogue top may have across an edge, in any pose: the
+  /// ends a box may have where only a colour line marks one (size_placed_edge.h).
+  std::vector<double> catalogue_extents_m_;
   RoiFilterParams params_;
   CloudProcessor cloud_processor_;
 };

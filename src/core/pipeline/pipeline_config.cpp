@@ -100,6 +100,7 @@ ParamBindings frontEndBindings(FrontEndParams& params)
           {"resting_height_margin_m", &roi.resting_height_margin_m},
           {"tiling_min_seam_strength", &roi.tiling.min_seam_strength},
           {"plain_seam_line_share", &roi.plain_seam_line_share},
+          {"size_placed_line_tolerance_m", &roi.size_placed_line_tolerance_m},
           {"confirm_seams_along_lines", &roi.confirm_seams_along_lines},
           {"height_above_support_tolerance_m", &roi.height_above_support_tolerance_m},
           {"side_height_tolerance_m", &roi.sides.height_tolerance_m},

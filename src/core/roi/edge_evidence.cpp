@@ -524,6 +524,7 @@ int badness(EdgeKind kind)
     case EdgeKind::kStepUp: return 4;
     case EdgeKind::kDropBesideWall: return 4;
     case EdgeKind::kColourLine: return 3;
+    case EdgeKind::kSizePlacedLine: return 3;
     case EdgeKind::kSeam: return 2;
     case EdgeKind::kCrease: return 1;
     case EdgeKind::kStepDown:
@@ -535,7 +536,7 @@ int badness(EdgeKind kind)
 bool isRealEdge(EdgeKind kind, bool uniform_colour)
 {
   return kind == EdgeKind::kStepDown || kind == EdgeKind::kCrease || kind == EdgeKind::kSeam ||
-         kind == EdgeKind::kStepUp || kind == EdgeKind::kDropBesideWall ||
+         kind == EdgeKind::kStepUp || kind == EdgeKind::kDropBesideWall || kind == EdgeKind::kSizePlacedLine ||
          (uniform_colour && kind == EdgeKind::kColourLine);
 }
 
@@ -547,6 +548,7 @@ std::string toString(EdgeKind kind)
     case EdgeKind::kCrease: return "crease";
     case EdgeKind::kSeam: return "seam";
     case EdgeKind::kColourLine: return "colour line";
+    case EdgeKind::kSizePlacedLine: return "line placed by the catalogue's sizes";
     case EdgeKind::kOcclusion: return "occlusion boundary";
     case EdgeKind::kStepUp: return "step up to a wall standing on the edge";
     case EdgeKind::kDropBesideWall: return "drop beside a neighbour's wall";
@@ -590,6 +592,12 @@ double endMargin(double length_px, const EdgeEvidenceParams& params)
   return std::min(0.25, std::max(params.end_margin_fraction, params.probe_px / length_px));
 }
 
+/// Stretches an edge is examined in: short edges in fewer, each ~20 px at least.
+int stretchCount(double length_px, double margin, const EdgeEvidenceParams& params)
+{
+  return std::max(1, std::min(params.stretches, static_cast<int>((1.0 - 2.0 * margin) * length_px / 20.0)));
+}
+
 /// The stretch from `from` to `to` of an edge, judged: its profile across
 /// the edge, with the outward band reaching twice as far (a stereo shadow
 /// beyond a step leaves the first pixels without depth).
@@ -618,8 +626,7 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
   const Eigen::Vector2d outward = outward_px.normalized();
   const double margin = endMargin(length_px, params);
   const Eigen::Vector2d start = a_px + margin * (b_px - a_px), end = b_px - margin * (b_px - a_px);
-  // Short edges are examined in fewer stretches, each ~20 px at least.
-  const int stretches = std::max(1, std::min(params.stretches, static_cast<int>((1.0 - 2.0 * margin) * length_px / 20.0)));
+  const int stretches = stretchCount(length_px, margin, params);
   double lowest_wall_m = std::numeric_limits<double>::infinity(), highest_wall_m = -lowest_wall_m;
   // (Clear walls: nothing reaches over the face inside them.)
   int walls = 0, clear_walls = 0, drops = 0, drops_beside_walls = 0;
@@ -661,6 +668,26 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
   worst.lowest_wall_m = walled ? lowest_wall_m : std::numeric_limits<double>::quiet_NaN();
   worst.highest_wall_m = walled ? highest_wall_m : std::numeric_limits<double>::quiet_NaN();
   return worst;
+}
+
+double unmarkedShareAlong(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
+                          const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
+                          const EdgeEvidenceParams& params)
+{
+  const double length_px = (b_px - a_px).norm();
+  if (!judgeable(length_px, outward_px, plane)) return 0.0;
+  const Eigen::Vector2d outward = outward_px.normalized();
+  const double margin = endMargin(length_px, params);
+  const Eigen::Vector2d start = a_px + margin * (b_px - a_px), end = b_px - margin * (b_px - a_px);
+  const int stretches = stretchCount(length_px, margin, params);
+  int unmarked = 0;
+  for (int k = 0; k < stretches; ++k)
+  {
+    const Eigen::Vector2d from = start + (static_cast<double>(k) / stretches) * (end - start);
+    const Eigen::Vector2d to = start + (static_cast<double>(k + 1) / stretches) * (end - start);
+    unmarked += judgeSpan(frame, plane, from, to, outward, params).kind == EdgeKind::kMaskEdge ? 1 : 0;
+  }
+  return static_cast<double>(unmarked) / stretches;
 }
 
 EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,

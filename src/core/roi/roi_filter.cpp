@@ -19,6 +19,7 @@
 #include "brick_pose/frame/organized_cloud.h"
 #include "brick_pose/roi/inset_fill.h"
 #include "brick_pose/roi/plate_splitter.h"
+#include "brick_pose/roi/size_placed_edge.h"
 #include "brick_pose/roi/type_evidence.h"
 
 #include "roi_filter_internal.h"
@@ -295,6 +296,7 @@ void RoiFilterParams::validate() const
   check.require(classification_tolerance_m >= 0.0, "classification_tolerance_m", "must be >= 0");
   check.require(min_fill_ratio >= 0.0 && min_fill_ratio <= 1.0, "min_fill_ratio", "must be in [0, 1]");
   check.require(resting_height_margin_m >= 0.0, "resting_height_margin_m", "must be >= 0");
+  check.require(size_placed_line_tolerance_m >= 0.0, "size_placed_line_tolerance_m", "must be >= 0");
   check.require(plain_seam_line_share >= 0.0 && plain_seam_line_share < 1.0, "plain_seam_line_share",
                 "must be in [0, 1)");
   check.require(height_above_support_tolerance_m >= 0.0 && height_above_support_tolerance_m < 0.1,
@@ -320,6 +322,7 @@ RoiFilter::RoiFilter(const BrickCatalogue& catalogue, const RoiFilterParams& par
   : catalogue_(catalogue),
     lying_variants_(lyingVariants(catalogue.types())),
     stack_heights_(StackHeights::of(catalogue.types())),
+    catalogue_extents_m_(catalogueExtentsM(catalogue)),
     params_(params),
     cloud_processor_(cloud_params)
 {
@@ -412,8 +415,11 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
     // steps too).
     const bool touches_a_neighbour =
         std::any_of(candidate.edge_kinds.begin(), candidate.edge_kinds.end(),
-                    [](EdgeKind kind) { return kind == EdgeKind::kSeam || kind == EdgeKind::kColourLine; });
-    if (segment.type_name.empty()) doubtComposedTop(frame, std::nullopt, touches_a_neighbour, candidate);
+                    [](EdgeKind kind) {
+                      return kind == EdgeKind::kSeam || kind == EdgeKind::kColourLine ||
+                             kind == EdgeKind::kSizePlacedLine;
+                    });
+    if (segment.type_name.empty()) doubtComposedTop(frame, context, std::nullopt, touches_a_neighbour, candidate);
     outcome.candidates.push_back(std::move(candidate));
     return outcome;
   }
@@ -622,6 +628,34 @@ void RoiFilter::moveEdgesToWallFeet(const RgbdFrame& frame, const EdgeEvidencePa
   placeCorners(frame.camera, corners_px, corners_m, candidate);
 }
 
+std::optional<std::string> RoiFilter::shapeDoubt(const RgbdFrame& frame, const FrameContext& context,
+                                                 const BrickType& type, const BrickCandidate& candidate) const
+{
+  // The face goes on, on its own plane, where the segment does not: a mask
+  // over part of a printed top, whose quad may still have the catalogue's
+  // size. (Where something nearer covers the quad, the brick's extent is
+  // still known from its ends: covered, not partial.)
+  const double uncovered = unsegmentedCoplanarFraction(frame, candidate, params_.edges.min_step_m);
+  if (uncovered > 1.0 - params_.min_fill_ratio)
+    return describe("the face continues on its plane outside the segment over", uncovered, "of its quad; limit",
+                    1.0 - params_.min_fill_ratio);
+  const double tolerance_m = params_.dimensions.tolerance_m;
+  if (std::abs(candidate.length_m - type.length_m) > tolerance_m ||
+      std::abs(candidate.width_m - type.width_m) > tolerance_m)
+  {
+    std::ostringstream text;
+    text.precision(3);
+    text << "visible size " << candidate.length_m << " x " << candidate.width_m << " m is not the catalogue's "
+         << type.length_m << " x " << type.width_m << " m";
+    // A box lying on a side shows such a face up: the doubt names it.
+    if (!candidate.type_doubt.empty()) text << "; " << candidate.type_doubt;
+    return text.str();
+  }
+  if (!context.up.known()) return std::string("up direction unknown: a top face cannot be told from a side face");
+  if (!candidate.type_doubt.empty()) return candidate.type_doubt;
+  return std::nullopt;
+}
+
 void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& context, bool uniform_colour,
                                   BrickCandidate& candidate) const
 {
@@ -633,52 +667,62 @@ void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& co
     candidate.partial_reason = "unknown brick type '" + candidate.type_name + "'";
     return;
   }
+  // A type in doubt is said beside an edge's reason too: the reason is all a reader sees.
+  const auto partialAtEdge = [&](int k, EdgeKind kind, const std::string& placed_doubt) {
+    candidate.partial_reason = edgeReason(k, kind);
+    if (!placed_doubt.empty()) candidate.partial_reason += ", " + placed_doubt;
+    if (!candidate.type_doubt.empty()) candidate.partial_reason += "; type in doubt: " + candidate.type_doubt;
+  };
   // Edges that hide where the brick ends say the most: the border and
-  // occluders first, then planes that continue, then missing depth.
+  // occluders first, then planes that continue, then missing depth. Lines
+  // on a printed face wait: the catalogue may place them (below).
+  std::vector<int> lines;
   for (const EdgeKind kind : {EdgeKind::kImageBorder, EdgeKind::kOcclusion, EdgeKind::kOverrun, EdgeKind::kMaskEdge,
                               EdgeKind::kNoDepth, EdgeKind::kUnknown, EdgeKind::kColourLine})
     for (int k = 0; k < 4; ++k)
-      if (candidate.edge_kinds[k] == kind && !isRealEdge(kind, uniform_colour))
+    {
+      if (candidate.edge_kinds[k] != kind || isRealEdge(kind, uniform_colour)) continue;
+      if (kind == EdgeKind::kColourLine)
       {
-        // A type in doubt is said too: the reason is all a reader sees.
-        candidate.partial_reason = edgeReason(k, kind);
-        if (!candidate.type_doubt.empty()) candidate.partial_reason += "; type in doubt: " + candidate.type_doubt;
-        return;
+        lines.push_back(k);
+        continue;
       }
-  // The face goes on, on its own plane, where the segment does not: a mask
-  // over part of a printed top, whose quad may still have the catalogue's
-  // size. (Where something nearer covers the quad, the brick's extent is
-  // still known from its ends: covered, not partial.)
-  const double uncovered = unsegmentedCoplanarFraction(frame, candidate, params_.edges.min_step_m);
-  if (uncovered > 1.0 - params_.min_fill_ratio)
+      partialAtEdge(k, kind, "");
+      return;
+    }
+  if (const std::optional<std::string> doubt = shapeDoubt(frame, context, *type, candidate))
   {
-    candidate.partial_reason =
-        describe("the face continues on its plane outside the segment over", uncovered, "of its quad; limit",
-                 1.0 - params_.min_fill_ratio);
+    if (lines.empty()) candidate.partial_reason = *doubt;
+    else partialAtEdge(lines.front(), EdgeKind::kColourLine, "");
     return;
   }
-  const double tolerance_m = params_.dimensions.tolerance_m;
-  if (std::abs(candidate.length_m - type->length_m) > tolerance_m ||
-      std::abs(candidate.width_m - type->width_m) > tolerance_m)
+  // A line on a printed face is the box's end where the box across from a
+  // real edge can end at it and at no other catalogue size.
+  if (!lines.empty())
   {
-    std::ostringstream text;
-    text.precision(3);
-    text << "visible size " << candidate.length_m << " x " << candidate.width_m << " m is not the catalogue's "
-         << type->length_m << " x " << type->width_m << " m";
-    // A box lying on a side shows such a face up: the doubt names it.
-    if (!candidate.type_doubt.empty()) text << "; " << candidate.type_doubt;
-    candidate.partial_reason = text.str();
-    return;
-  }
-  if (!context.up.known())
-  {
-    candidate.partial_reason = "up direction unknown: a top face cannot be told from a side face";
-    return;
-  }
-  if (!candidate.type_doubt.empty())
-  {
-    candidate.partial_reason = candidate.type_doubt;
-    return;
+    const double size_off_m = std::max(std::abs(candidate.length_m - type->length_m),
+                                       std::abs(candidate.width_m - type->width_m));
+    if (!(params_.size_placed_line_tolerance_m > 0.0 && size_off_m <= params_.size_placed_line_tolerance_m))
+    {
+      partialAtEdge(lines.front(), EdgeKind::kColourLine,
+                    describe("and the face's size is", size_off_m, "m off its type's: more than",
+                             params_.size_placed_line_tolerance_m) +
+                        " for sizes to place it");
+      return;
+    }
+    const std::vector<double> extents_m = extentsStandingThere(frame, context, candidate);
+    for (const int k : lines)
+    {
+      const SizePlacedEdge placed =
+          judgeSizePlacedEdge(frame, candidate, k, extents_m, params_.dimensions.tolerance_m, params_.edges);
+      if (placed.confirmed)
+      {
+        candidate.edge_kinds[k] = EdgeKind::kSizePlacedLine;
+        continue;
+      }
+      partialAtEdge(k, EdgeKind::kColourLine, placed.doubt);
+      return;
+    }
   }
   // Last (the most expensive): sides seen below real edges must be as tall
   // as the brick.

@@ -296,22 +296,15 @@ bool RoiFilter::mayShowASeamAcross(const RgbdFrame& frame, const Segment& segmen
              .seam_possible;
 }
 
-RoiFilter::TypesAtHeight RoiFilter::typesStandingWhereTheFaceIs(const RgbdFrame& frame, const FrameContext& context,
-                                                                const BrickCandidate& face,
-                                                                const std::vector<const BrickType*>& types) const
+std::optional<std::vector<const BrickType*>> RoiFilter::posesStandingMostExactly(
+    const RgbdFrame& frame, const FrameContext& context, const BrickCandidate& face,
+    const std::vector<const BrickType*>& shown) const
 {
-  // Every brick of a merged face stands where the face is: two box_small
-  // side by side 0.15 m above the floor make a box_large's top, but no
-  // box_large (0.25 m tall) has its top there, on its bottom, a side or an
-  // end. Without a support, or where none of the types could stand (a
-  // plinth under the pile), all stay.
   const double tolerance_m = params_.height_above_support_tolerance_m;
-  if (!(tolerance_m > 0.0) || !context.up.support_given) return {types, false};
-  const TypePoses poses = posesOf(types);
-  const std::vector<const BrickType*> shown = poses.pointers();
+  if (!(tolerance_m > 0.0) || !context.up.support_given) return std::nullopt;
   const double height_m = context.up.heightAboveSupport(face.centroid_m);
   std::vector<const BrickType*> standing = typesStandingAt(shown, height_m, {}, stack_heights_, tolerance_m);
-  if (standing.empty()) return {types, false};
+  if (standing.empty()) return std::nullopt;
   // The poses standing there most exactly, as closestType weighs them.
   std::vector<double> misfits_m = standingMisfitsM(standing, height_m, stack_heights_);
   double least_m = *std::min_element(misfits_m.begin(), misfits_m.end());
@@ -329,20 +322,36 @@ RoiFilter::TypesAtHeight RoiFilter::typesStandingWhereTheFaceIs(const RgbdFrame&
   std::vector<const BrickType*> exact;
   for (std::size_t i = 0; i < standing.size(); ++i)
     if (misfits_m[i] <= least_m + kTypeMarginM) exact.push_back(standing[i]);
+  return exact;
+}
+
+RoiFilter::TypesAtHeight RoiFilter::typesStandingWhereTheFaceIs(const RgbdFrame& frame, const FrameContext& context,
+                                                                const BrickCandidate& face,
+                                                                const std::vector<const BrickType*>& types) const
+{
+  // Every brick of a merged face stands where the face is: two box_small
+  // side by side 0.15 m above the floor make a box_large's top, but no
+  // box_large (0.25 m tall) has its top there, on its bottom, a side or an
+  // end. Without a support, or where none of the types could stand (a
+  // plinth under the pile), all stay.
+  const TypePoses poses = posesOf(types);
+  const std::optional<std::vector<const BrickType*>> exact =
+      posesStandingMostExactly(frame, context, face, poses.pointers());
+  if (!exact) return {types, false};
   // Types standing there clearly less exactly than another (a box_flat
   // 0.25 m up needs a box lying on a side beneath, 2 cm off, where a
   // box_large stands on the ground) are no tiles: two such tops side by
   // side make the exact one's. (A box lying exactly there is a tile too:
   // its face may be near its top's size.)
   TypesAtHeight result;
-  result.types = poses.typesOf(exact);
+  result.types = poses.typesOf(*exact);
   // The exact poses all show one top, a type's on its bottom (the tiler
   // lays no lying box's face): a cut the tiler made at that size is placed.
-  const BrickType& top = *exact.front();
+  const BrickType& top = *exact->front();
   auto showsThatTop = [&](const BrickType* pose) {
     return showsTop(*pose, top.length_m, top.width_m, params_.dimensions.tolerance_m);
   };
-  result.one_top_size = std::all_of(exact.begin(), exact.end(), showsThatTop) &&
+  result.one_top_size = std::all_of(exact->begin(), exact->end(), showsThatTop) &&
                         std::any_of(result.types.begin(), result.types.end(), showsThatTop);
   return result;
 }
@@ -458,7 +467,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
       addTypeDoubt(candidate, doubt);
     }
     if (!reason) judgeCompleteness(frame, context, !typed_by_size || plain[k], candidate);
-    if (!reason && typed_by_size) doubtComposedTop(frame, plain[k] != 0, true, candidate);
+    if (!reason && typed_by_size) doubtComposedTop(frame, context, plain[k] != 0, true, candidate);
   });
   RoiOutcome outcome;
   outcome.candidates.reserve(tiling.tiles.size());  // a growing vector would copy the candidates

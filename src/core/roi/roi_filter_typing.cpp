@@ -385,6 +385,23 @@ std::optional<RoiFilter::StandingHeight> RoiFilter::standingHeight(const RgbdFra
                                                    candidate.plane, context.up, tolerance_m)};
 }
 
+std::vector<double> RoiFilter::extentsStandingThere(const RgbdFrame& frame, const FrameContext& context,
+                                                   const BrickCandidate& face) const
+{
+  std::vector<const BrickType*> shown;
+  for (const BrickType& type : catalogue_.types()) shown.push_back(&type);
+  for (const BrickType& pose : lying_variants_) shown.push_back(&pose);
+  const std::optional<std::vector<const BrickType*>> poses = posesStandingMostExactly(frame, context, face, shown);
+  if (!poses) return catalogue_extents_m_;
+  std::vector<double> extents_m;
+  for (const BrickType* pose : *poses)
+  {
+    extents_m.push_back(pose->length_m);
+    extents_m.push_back(pose->width_m);
+  }
+  return extents_m;
+}
+
 void RoiFilter::keepTypesStandingThere(const std::optional<StandingHeight>& height,
                                        std::vector<const BrickType*>& fitting,
                                        std::vector<const BrickType*>& rivals) const
@@ -405,13 +422,24 @@ void RoiFilter::keepTypesStandingThere(const std::optional<StandingHeight>& heig
     if (std::find(rivals.begin(), rivals.end(), type) == rivals.end()) rivals.push_back(type);
 }
 
-void RoiFilter::doubtComposedTop(const RgbdFrame& frame, std::optional<bool> plain, bool in_layer,
-                                 BrickCandidate& candidate) const
+void RoiFilter::doubtComposedTop(const RgbdFrame& frame, const FrameContext& context, std::optional<bool> plain,
+                                 bool in_layer, BrickCandidate& candidate) const
 {
   if (!candidate.complete) return;
   const BrickType* type = catalogue_.find(candidate.type_name);
   if (!type) return;
-  const Composition composition = smallerTypeTiling(catalogue_.types(), *type, params_.dimensions.tolerance_m);
+  if (!smallerTypeTiling(catalogue_.types(), *type, params_.dimensions.tolerance_m).type) return;
+  // Smaller boxes side by side stand where the face is, as exactly as any
+  // type could (the types the tiler lays there): two box_small 0.25 m up
+  // would need a box beneath them no catalogue has, and two box_flat there
+  // a box lying beneath each, 2 cm off, where a box_large stands on the
+  // ground.
+  std::vector<const BrickType*> all_types;
+  for (const BrickType& each : catalogue_.types()) all_types.push_back(&each);
+  const std::vector<const BrickType*> exact = typesStandingWhereTheFaceIs(frame, context, candidate, all_types).types;
+  std::vector<BrickType> standing;
+  for (const BrickType* each : exact) standing.push_back(*each);
+  const Composition composition = smallerTypeTiling(standing, *type, params_.dimensions.tolerance_m);
   if (!composition.type) return;
   const std::string printed = "on a printed face their seam need not show";
   std::string why;

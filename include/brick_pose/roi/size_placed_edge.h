@@ -1,0 +1,46 @@
+#pragma once
+// A printed box draws lines anywhere on its top, so a line in the colour
+// image alone does not show where a box ends: on a pallet layer of touching
+// boxes, the edges between them are such lines, and every box there was
+// partial. The catalogue adds what the line lacks. Where the face's
+// opposite edge is a real one (a step, a crease, a groove), the box that
+// starts there ends at one of the catalogue's extents across it. When the
+// line lies at one of them and nothing marks any other (no line, groove,
+// step, border or occluder along most of where a box of another size would end),
+// the line is that box's end. Print could fool this only by drawing a line
+// at a catalogue extent while the true end shows no mark at all, which is
+// the colour-free front end's premise everywhere else too: a seam shows.
+
+#include <string>
+#include <vector>
+
+#include "brick_pose/catalogue/brick_catalogue.h"
+#include "brick_pose/frame/rgbd_frame.h"
+#include "brick_pose/roi/brick_candidate.h"
+#include "brick_pose/roi/edge_evidence.h"
+
+namespace brick_pose
+{
+/// Every extent (m) a catalogue box's top may have along either of its
+/// axes, in any pose (lying on a side or an end too): each type's length,
+/// width and height, ascending, those within 1 mm of another dropped.
+std::vector<double> catalogueExtentsM(const BrickCatalogue& catalogue);
+
+/// What placed (or failed to place) a colour line as the face's end.
+struct SizePlacedEdge
+{
+  bool confirmed = false;
+  /// Why not, for the face's partial reason; empty when confirmed.
+  std::string doubt;
+};
+
+/// Whether `face`'s edge `edge` (a colour line) is where the box ends: its
+/// opposite edge is real (isRealEdge, printed), and for every extent of
+/// `extents_m` farther than `tolerance_m` from the face's own across that
+/// edge, the lines parallel to the opposite edge at that extent (within
+/// the tolerance, or half the way to the face's own) are mostly unmarked
+/// (unmarkedShareAlong).
+SizePlacedEdge judgeSizePlacedEdge(const RgbdFrame& frame, const BrickCandidate& face, int edge,
+                                   const std::vector<double>& extents_m, double tolerance_m,
+                                   const EdgeEvidenceParams& params);
+}  // namespace brick_pose

@@ -1,0 +1,115 @@
+#include "brick_pose/roi/size_placed_edge.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace brick_pose
+{
+namespace
+{
+/// A box may end along a line when at least this share of it shows a mark
+/// (a line, groove, step, or what hides one): print crossing a stretch or
+/// two of a line marks no more than that, and a box's end runs all along it.
+constexpr double kMinMarkedShare = 0.5;
+
+/// A line across the face, parallel to the edge opposite `edge`, at
+/// `extent_m` from it (measured toward `edge`), with its image direction
+/// away from that opposite edge.
+struct ProbeLine
+{
+  Eigen::Vector2d a_px, b_px, outward_px;
+};
+
+class AcrossEdge
+{
+public:
+  AcrossEdge(const BrickCandidate& face, int edge)
+  {
+    const auto& c = face.corners_m;
+    // Edge k runs from corner k to k + 1; its opposite from k + 2 to k + 3,
+    // whose ends k + 3 and k + 2 lie across from k and k + 1.
+    from_a_m_ = c[(edge + 3) % 4];
+    from_b_m_ = c[(edge + 2) % 4];
+    const Eigen::Vector3d along = (from_b_m_ - from_a_m_).normalized();
+    const Eigen::Vector3d sides = (c[edge] - from_a_m_) + (c[(edge + 1) % 4] - from_b_m_);
+    across_ = (sides - along * along.dot(sides)).normalized();
+    extent_m_ = 0.5 * ((c[edge] - from_a_m_).dot(across_) + (c[(edge + 1) % 4] - from_b_m_).dot(across_));
+  }
+
+  double extentM() const { return extent_m_; }
+
+  ProbeLine at(const PinholeCamera& camera, double extent_m) const
+  {
+    const Eigen::Vector3d a = from_a_m_ + extent_m * across_, b = from_b_m_ + extent_m * across_;
+    const Eigen::Vector2d a_px = camera.project(a), b_px = camera.project(b);
+    const Eigen::Vector2d beyond_px = camera.project(0.5 * (a + b) + 0.01 * across_);
+    return {a_px, b_px, beyond_px - 0.5 * (a_px + b_px)};
+  }
+
+private:
+  Eigen::Vector3d from_a_m_, from_b_m_, across_;
+  double extent_m_ = 0.0;
+};
+
+/// Whether something marks a line where a box `extent_m` across would end
+/// (over kMinMarkedShare of any line from extent_m - reach_m to extent_m + reach_m, a few pixels
+/// apart so that their seam searches overlap).
+bool endMayBeMarked(const RgbdFrame& frame, const BrickCandidate& face, const AcrossEdge& across, double extent_m,
+                    double reach_m, const EdgeEvidenceParams& params)
+{
+  const double depth_m = std::max(0.1, face.centroid_m.z());
+  const double step_m = std::max(1e-3, std::max(1, params.seam_search_px) * depth_m / frame.camera.fx_px);
+  for (double at_m = extent_m - reach_m; at_m <= extent_m + reach_m + 1e-9; at_m += step_m)
+  {
+    if (at_m <= 0.0) continue;
+    const ProbeLine line = across.at(frame.camera, at_m);
+    const double marked_share =
+        1.0 - unmarkedShareAlong(frame, face.plane, line.a_px, line.b_px, line.outward_px, params);
+    if (marked_share >= kMinMarkedShare) return true;
+  }
+  return false;
+}
+}  // namespace
+
+std::vector<double> catalogueExtentsM(const BrickCatalogue& catalogue)
+{
+  std::vector<double> extents;
+  for (const BrickType& type : catalogue.types())
+    for (const double extent_m : {type.length_m, type.width_m, type.height_m}) extents.push_back(extent_m);
+  std::sort(extents.begin(), extents.end());
+  std::vector<double> distinct;
+  for (const double extent_m : extents)
+    if (distinct.empty() || extent_m - distinct.back() > 1e-3) distinct.push_back(extent_m);
+  return distinct;
+}
+
+SizePlacedEdge judgeSizePlacedEdge(const RgbdFrame& frame, const BrickCandidate& face, int edge,
+                                   const std::vector<double>& extents_m, double tolerance_m,
+                                   const EdgeEvidenceParams& params)
+{
+  SizePlacedEdge result;
+  const EdgeKind opposite = face.edge_kinds[(edge + 2) % 4];
+  if (!isRealEdge(opposite))
+  {
+    result.doubt = "and the edge across from it is no real edge either (" + toString(opposite) + ")";
+    return result;
+  }
+  const AcrossEdge across(face, edge);
+  const double own_m = across.extentM();
+  for (const double extent_m : extents_m)
+  {
+    const double apart_m = std::abs(extent_m - own_m);
+    if (apart_m <= tolerance_m) continue;
+    if (!endMayBeMarked(frame, face, across, extent_m, std::min(tolerance_m, 0.5 * apart_m), params)) continue;
+    std::ostringstream text;
+    text.precision(3);
+    text << "and a box " << extent_m << " m across from edge " << (edge + 2) % 4
+         << " (a catalogue size) may end at a mark there";
+    result.doubt = text.str();
+    return result;
+  }
+  result.confirmed = true;
+  return result;
+}
+}  // namespace brick_pose
