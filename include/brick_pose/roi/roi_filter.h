@@ -345,6 +345,14 @@ private:
   /// levels around its foot included), most exactly: within kTypeMarginM
   /// of the least standingMisfitM. `types` (one_top_size false) when no
   /// support is given or none could stand there.
+  /// A line placed as one tile's end (kSizePlacedLine) is where the tile
+  /// across it begins: that tile's colour line there becomes one, and it is
+  /// judged again (judgeCompleteness, doubtComposedTop), so that its own
+  /// far line may be placed from it, round after round through a layer.
+  /// Tiles with a `reason` are left out; `plain` ones see lines as seams.
+  void placeLinesAcrossTiles(const RgbdFrame& frame, const FrameContext& context, const std::vector<char>& plain,
+                             const std::vector<std::optional<std::string>>& reasons,
+                             std::vector<BrickCandidate>& tiles) const;
   /// The poses of `shown` whose top could be at `face`'s height above the
   /// given support (typesStandingAt, levels around its foot read only where
   /// a pose standing on one could still be exact), within kTypeMarginM of

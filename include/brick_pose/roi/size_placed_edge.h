@@ -43,4 +43,12 @@ struct SizePlacedEdge
 SizePlacedEdge judgeSizePlacedEdge(const RgbdFrame& frame, const BrickCandidate& face, int edge,
                                    const std::vector<double>& extents_m, double tolerance_m,
                                    const EdgeEvidenceParams& params);
+/// Whether `face`'s edge `edge` and `other`'s edge `other_edge` are one line
+/// the two faces meet along, from either side: parallel within 10 degrees,
+/// each end of the other's edge within `within_m` of the face's edge's line,
+/// covering at least 80 % of it, the faces' centres on opposite sides.
+/// Where a line was placed as one box's end (kSizePlacedLine), the box
+/// across it begins there: a real edge for that face too.
+bool meetAlongEdge(const BrickCandidate& face, int edge, const BrickCandidate& other, int other_edge,
+                   double within_m);
 }  // namespace brick_pose

@@ -18,6 +18,7 @@
 #include "brick_pose/roi/foot_levels.h"
 #include "brick_pose/roi/raised_layer.h"
 #include "brick_pose/roi/seam_probe.h"
+#include "brick_pose/roi/size_placed_edge.h"
 
 #include "roi_filter_internal.h"
 
@@ -58,6 +59,9 @@ constexpr double kMinSeamLineContrast = 1.0;
 /// Where a probed seam or end may lie off the tiler's cut: a bin or two of
 /// the probe (a pixel each) and the tiler's cells (4 mm).
 constexpr double kProbedEndSlackM = 0.01;
+/// Two tiles' edges along one cut lie this close (m): the tiler cut both
+/// along one line, each refitted to its own pixels since.
+constexpr double kMeetingLineM = 0.02;
 
 /// Per tile, whether it is plain (see colour_uniformity.h), and so is the
 /// whole face (`face`, its uniformity) by its scatter (its seams are
@@ -296,6 +300,45 @@ bool RoiFilter::mayShowASeamAcross(const RgbdFrame& frame, const Segment& segmen
              .seam_possible;
 }
 
+void RoiFilter::placeLinesAcrossTiles(const RgbdFrame& frame, const FrameContext& context,
+                                      const std::vector<char>& plain,
+                                      const std::vector<std::optional<std::string>>& reasons,
+                                      std::vector<BrickCandidate>& tiles) const
+{
+  const auto placedAcross = [&](std::size_t k, int edge) {
+    for (std::size_t other = 0; other < tiles.size(); ++other)
+    {
+      if (other == k || reasons[other]) continue;
+      for (int other_edge = 0; other_edge < 4; ++other_edge)
+        if (tiles[other].edge_kinds[other_edge] == EdgeKind::kSizePlacedLine &&
+            meetAlongEdge(tiles[k], edge, tiles[other], other_edge, kMeetingLineM))
+          return true;
+    }
+    return false;
+  };
+  // Each round places at least one more line, or stops.
+  for (bool placed_more = true; placed_more;)
+  {
+    placed_more = false;
+    for (std::size_t k = 0; k < tiles.size(); ++k)
+    {
+      BrickCandidate& tile = tiles[k];
+      if (reasons[k] || tile.complete || plain[k]) continue;
+      bool took = false;
+      for (int edge = 0; edge < 4; ++edge)
+        if (tile.edge_kinds[edge] == EdgeKind::kColourLine && placedAcross(k, edge))
+        {
+          tile.edge_kinds[edge] = EdgeKind::kSizePlacedLine;
+          took = true;
+        }
+      if (!took) continue;
+      placed_more = true;
+      judgeCompleteness(frame, context, false, tile);
+      doubtComposedTop(frame, context, false, true, tile);
+    }
+  }
+}
+
 std::optional<std::vector<const BrickType*>> RoiFilter::posesStandingMostExactly(
     const RgbdFrame& frame, const FrameContext& context, const BrickCandidate& face,
     const std::vector<const BrickType*>& shown) const
@@ -469,6 +512,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
     if (!reason) judgeCompleteness(frame, context, !typed_by_size || plain[k], candidate);
     if (!reason && typed_by_size) doubtComposedTop(frame, context, plain[k] != 0, true, candidate);
   });
+  if (typed_by_size) placeLinesAcrossTiles(frame, context, plain, reasons, candidates);
   RoiOutcome outcome;
   outcome.candidates.reserve(tiling.tiles.size());  // a growing vector would copy the candidates
   for (int k = 0; k < tile_count; ++k)

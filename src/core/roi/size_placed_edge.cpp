@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "brick_pose/common/angles.h"
+
 namespace brick_pose
 {
 namespace
@@ -71,6 +73,28 @@ bool endMayBeMarked(const RgbdFrame& frame, const BrickCandidate& face, const Ac
   return false;
 }
 }  // namespace
+
+bool meetAlongEdge(const BrickCandidate& face, int edge, const BrickCandidate& other, int other_edge,
+                   double within_m)
+{
+  const Eigen::Vector3d a = face.corners_m[edge], b = face.corners_m[(edge + 1) % 4];
+  const Eigen::Vector3d p = other.corners_m[other_edge], q = other.corners_m[(other_edge + 1) % 4];
+  const double length_m = (b - a).norm();
+  if (!(length_m > 0.0) || !((q - p).norm() > 0.0)) return false;
+  const Eigen::Vector3d along = (b - a) / length_m;
+  if (std::abs(along.dot((q - p).normalized())) < std::cos(10.0 * kDegToRad)) return false;
+  const auto offLine = [&](const Eigen::Vector3d& point) {
+    const Eigen::Vector3d from_a = point - a;
+    return (from_a - along * along.dot(from_a)).norm();
+  };
+  if (offLine(p) > within_m || offLine(q) > within_m) return false;
+  const double t_p = along.dot(p - a), t_q = along.dot(q - a);
+  const double overlap_m = std::min(length_m, std::max(t_p, t_q)) - std::max(0.0, std::min(t_p, t_q));
+  if (overlap_m < 0.8 * length_m) return false;
+  // The centres lie on opposite sides of the line (across it, in the plane).
+  const Eigen::Vector3d from_line = face.centroid_m - a - along * along.dot(face.centroid_m - a);
+  return from_line.dot(other.centroid_m - a) < 0.0;
+}
 
 std::vector<double> catalogueExtentsM(const BrickCatalogue& catalogue)
 {
