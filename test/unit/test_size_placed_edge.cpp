@@ -167,10 +167,12 @@ TEST(SizePlacedEdge, PalletBoxesBetweenPrintedNeighboursArePickableWhereOnlyThei
   // from such a line is complete where no other size of a box standing
   // there could end it; the line placed, the box across it begins there
   // too, and its own far line may be placed from it. Whole tops found
-  // complete: frame 132, 4 of 6 (none before; 2 without the lines placed
-  // from a neighbour's); 137, 5 of 5 (none; 3); 144, 3 of 4 (none; 3). No
-  // face is complete that is not a whole top (asserted inside).
-  const std::vector<std::pair<int, int>> frames_and_least_complete{{132, 3}, {137, 4}, {144, 2}};
+  // complete in the release build: frame 129, 3 of 9 (none before; 1
+  // without the lines placed from a neighbour's); 137, 5 of 5 (none; 3).
+  // (The sanitizer build's clang renders other scenes from the same seeds:
+  // there 5 of 10 and 4 of 7.) No face is complete that is not a whole top
+  // (asserted inside).
+  const std::vector<std::pair<int, int>> frames_and_least_complete{{129, 3}, {137, 4}};
   for (const auto& [frame, least_complete] : frames_and_least_complete)
   {
     const test::WholeTops tops = test::palletLayerBenchFrame(frame, "640x480");
