@@ -302,6 +302,13 @@ private:
   /// edge is a seam (on printed boxes it may be print).
   void judgeCompleteness(const RgbdFrame& frame, const FrameContext& context, bool uniform_colour,
                          BrickCandidate& candidate) const;
+  /// Places each of the face's `lines` (colour lines on a printed face) as
+  /// its end where the catalogue's sizes do (judgeSizePlacedEdge; the face
+  /// within size_placed_line_tolerance_m of `type`'s size), turning them
+  /// into kSizePlacedLine; the first line not placed and why, if any.
+  std::optional<std::pair<int, std::string>> placeLinesBySize(const RgbdFrame& frame, const FrameContext& context,
+                                                              const BrickType& type, const std::vector<int>& lines,
+                                                              BrickCandidate& candidate) const;
   /// What judgeCompleteness doubts of a face whose edges all end it: its
   /// plane going on outside the segment, a size not its type's, no up
   /// direction, or a type in doubt; nothing when none of these.

@@ -656,6 +656,30 @@ std::optional<std::string> RoiFilter::shapeDoubt(const RgbdFrame& frame, const F
   return std::nullopt;
 }
 
+std::optional<std::pair<int, std::string>> RoiFilter::placeLinesBySize(const RgbdFrame& frame,
+                                                                       const FrameContext& context,
+                                                                       const BrickType& type,
+                                                                       const std::vector<int>& lines,
+                                                                       BrickCandidate& candidate) const
+{
+  if (lines.empty()) return std::nullopt;
+  const double size_off_m =
+      std::max(std::abs(candidate.length_m - type.length_m), std::abs(candidate.width_m - type.width_m));
+  if (!(params_.size_placed_line_tolerance_m > 0.0 && size_off_m <= params_.size_placed_line_tolerance_m))
+    return std::make_pair(lines.front(), describe("and the face's size is", size_off_m, "m off its type's: more than",
+                                                  params_.size_placed_line_tolerance_m) +
+                                             " for sizes to place it");
+  const std::vector<double> extents_m = extentsStandingThere(frame, context, candidate);
+  for (const int k : lines)
+  {
+    const SizePlacedEdge placed =
+        judgeSizePlacedEdge(frame, candidate, k, extents_m, params_.dimensions.tolerance_m, params_.edges);
+    if (!placed.confirmed) return std::make_pair(k, placed.doubt);
+    candidate.edge_kinds[k] = EdgeKind::kSizePlacedLine;
+  }
+  return std::nullopt;
+}
+
 void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& context, bool uniform_colour,
                                   BrickCandidate& candidate) const
 {
@@ -698,31 +722,11 @@ void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& co
   }
   // A line on a printed face is the box's end where the box across from a
   // real edge can end at it and at no other catalogue size.
-  if (!lines.empty())
+  if (const std::optional<std::pair<int, std::string>> unplaced = placeLinesBySize(frame, context, *type, lines,
+                                                                                    candidate))
   {
-    const double size_off_m = std::max(std::abs(candidate.length_m - type->length_m),
-                                       std::abs(candidate.width_m - type->width_m));
-    if (!(params_.size_placed_line_tolerance_m > 0.0 && size_off_m <= params_.size_placed_line_tolerance_m))
-    {
-      partialAtEdge(lines.front(), EdgeKind::kColourLine,
-                    describe("and the face's size is", size_off_m, "m off its type's: more than",
-                             params_.size_placed_line_tolerance_m) +
-                        " for sizes to place it");
-      return;
-    }
-    const std::vector<double> extents_m = extentsStandingThere(frame, context, candidate);
-    for (const int k : lines)
-    {
-      const SizePlacedEdge placed =
-          judgeSizePlacedEdge(frame, candidate, k, extents_m, params_.dimensions.tolerance_m, params_.edges);
-      if (placed.confirmed)
-      {
-        candidate.edge_kinds[k] = EdgeKind::kSizePlacedLine;
-        continue;
-      }
-      partialAtEdge(k, EdgeKind::kColourLine, placed.doubt);
-      return;
-    }
+    partialAtEdge(unplaced->first, EdgeKind::kColourLine, unplaced->second);
+    return;
   }
   // Last (the most expensive): sides seen below real edges must be as tall
   // as the brick.
