@@ -107,13 +107,25 @@ TEST(SizePlacedEdge, ALineWhereABoxOfAnotherSizeWouldEndLeavesTheEndInDoubt)
   EXPECT_NE(inside_placed.doubt.find("0.25 m across"), std::string::npos) << inside_placed.doubt;
 }
 
-TEST(SizePlacedEdge, PrintCrossingAQuarterOfWhereAnotherSizeWouldEndIsNoEnd)
+TEST(SizePlacedEdge, PrintAlongHalfOfWhereAnotherSizeWouldEndIsNoEnd)
 {
-  // A label's edge along the first quarter of the line 0.40 m on.
+  // A label's edge along the first half of the line 0.40 m on (two of the
+  // line's four stretches): print, which a box's end running all along
+  // the line is not.
   const int far_u = kStepU + 100;
-  const RgbdFrame frame = makeFrame([&](int u, int v) { return onTheSeam(u) || (u == far_u && v < kTopV + 22); });
+  const RgbdFrame frame = makeFrame([&](int u, int v) { return onTheSeam(u) || (u == far_u && v < kTopV + 50); });
   const SizePlacedEdge placed = judgeSizePlacedEdge(frame, faceUpToTheLine(), 0, kExtentsM, kToleranceM, {});
   EXPECT_TRUE(placed.confirmed) << placed.doubt;
+}
+
+TEST(SizePlacedEdge, AMarkAlongThreeQuartersOfWhereAnotherSizeWouldEndLeavesTheDoubt)
+{
+  // A seam faint along a quarter of its length (low light) still shows
+  // where a box 0.40 m across would end.
+  const int far_u = kStepU + 100;
+  const RgbdFrame frame = makeFrame([&](int u, int v) { return onTheSeam(u) || (u == far_u && v < kTopV + 72); });
+  const SizePlacedEdge placed = judgeSizePlacedEdge(frame, faceUpToTheLine(), 0, kExtentsM, kToleranceM, {});
+  EXPECT_FALSE(placed.confirmed);
 }
 
 TEST(SizePlacedEdge, ALineAcrossFromAnotherLineIsNoEnd)

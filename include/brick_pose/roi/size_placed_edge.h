@@ -6,10 +6,12 @@
 // opposite edge is a real one (a step, a crease, a groove), the box that
 // starts there ends at one of the catalogue's extents across it. When the
 // line lies at one of them and nothing marks any other (no line, groove,
-// step, border or occluder along most of where a box of another size would end),
-// the line is that box's end. Print could fool this only by drawing a line
-// at a catalogue extent while the true end shows no mark at all, which is
-// the colour-free front end's premise everywhere else too: a seam shows.
+// step, border or occluder along three quarters of where a box of another
+// size would end), the line is that box's end. Print could fool this only
+// by drawing a line all across the face at a catalogue extent, on a face of
+// a type's size, while the true end shows a mark along a quarter of its
+// length at most: the colour-free front end's premise everywhere else is
+// that a seam shows.
 
 #include <string>
 #include <vector>
@@ -38,8 +40,8 @@ struct SizePlacedEdge
 /// opposite edge is real (isRealEdge, printed), and for every extent of
 /// `extents_m` farther than `tolerance_m` from the face's own across that
 /// edge, the lines parallel to the opposite edge at that extent (within
-/// the tolerance, or half the way to the face's own) are mostly unmarked
-/// (unmarkedShareAlong).
+/// the tolerance, or half the way to the face's own) are each unmarked
+/// along more than a quarter of their length (unmarkedShareAlong).
 SizePlacedEdge judgeSizePlacedEdge(const RgbdFrame& frame, const BrickCandidate& face, int edge,
                                    const std::vector<double>& extents_m, double tolerance_m,
                                    const EdgeEvidenceParams& params);
