@@ -165,13 +165,15 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
                           const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
                           const EdgeEvidenceParams& params = EdgeEvidenceParams());
 
-/// Share of the stretches of the line from `a_px` to `b_px` across a face
-/// (both sides on `plane`) that show the plane going on with nothing
-/// marking it (kMaskEdge): no line, groove or step, no border, occluder or
-/// missing depth. A box does not end along a line mostly so.
-double unmarkedShareAlong(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
-                          const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
-                          const EdgeEvidenceParams& params = EdgeEvidenceParams());
+/// Whether at least `min_share` of the stretches of the line from `a_px` to
+/// `b_px` across a face (both sides on `plane`) show a mark: anything but
+/// the plane going on with nothing on it (kMaskEdge), so a line, groove or
+/// step, or a border, occluder or missing depth that may hide one. A box
+/// ends only along a line marked all along it; print marks stretches.
+/// True for a line too short to judge.
+bool markedAlong(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
+                 const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px, double min_share,
+                 const EdgeEvidenceParams& params = EdgeEvidenceParams());
 
 /// The ends of the same edge, which classifyEdge() leaves out (the
 /// end_margin_fraction next to each corner), judged the same way: kOcclusion

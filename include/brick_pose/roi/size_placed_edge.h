@@ -41,7 +41,7 @@ struct SizePlacedEdge
 /// `extents_m` farther than `tolerance_m` from the face's own across that
 /// edge, the lines parallel to the opposite edge at that extent (within
 /// the tolerance, or half the way to the face's own) are each unmarked
-/// along more than a quarter of their length (unmarkedShareAlong).
+/// along more than a quarter of their length (markedAlong).
 SizePlacedEdge judgeSizePlacedEdge(const RgbdFrame& frame, const BrickCandidate& face, int edge,
                                    const std::vector<double>& extents_m, double tolerance_m,
                                    const EdgeEvidenceParams& params);

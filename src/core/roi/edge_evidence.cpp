@@ -670,24 +670,26 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
   return worst;
 }
 
-double unmarkedShareAlong(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
-                          const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
-                          const EdgeEvidenceParams& params)
+bool markedAlong(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
+                 const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px, double min_share,
+                 const EdgeEvidenceParams& params)
 {
   const double length_px = (b_px - a_px).norm();
-  if (!judgeable(length_px, outward_px, plane)) return 0.0;
+  if (!judgeable(length_px, outward_px, plane)) return true;
   const Eigen::Vector2d outward = outward_px.normalized();
   const double margin = endMargin(length_px, params);
   const Eigen::Vector2d start = a_px + margin * (b_px - a_px), end = b_px - margin * (b_px - a_px);
   const int stretches = stretchCount(length_px, margin, params);
-  int unmarked = 0;
-  for (int k = 0; k < stretches; ++k)
+  // Stops as soon as the share is settled either way.
+  const double needed = min_share * stretches;
+  int marked = 0, unmarked = 0;
+  for (int k = 0; k < stretches && marked < needed && stretches - unmarked >= needed; ++k)
   {
     const Eigen::Vector2d from = start + (static_cast<double>(k) / stretches) * (end - start);
     const Eigen::Vector2d to = start + (static_cast<double>(k + 1) / stretches) * (end - start);
-    unmarked += judgeSpan(frame, plane, from, to, outward, params).kind == EdgeKind::kMaskEdge ? 1 : 0;
+    (judgeSpan(frame, plane, from, to, outward, params).kind == EdgeKind::kMaskEdge ? unmarked : marked) += 1;
   }
-  return static_cast<double>(unmarked) / stretches;
+  return marked >= needed;
 }
 
 EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,

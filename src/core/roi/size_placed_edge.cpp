@@ -58,8 +58,13 @@ private:
 };
 
 /// Whether something marks a line where a box `extent_m` across would end
-/// (over kMinMarkedShare of any line from extent_m - reach_m to extent_m + reach_m, a few pixels
-/// apart so that their seam searches overlap).
+/// (over kMinMarkedShare of any line from extent_m - reach_m to
+/// extent_m + reach_m), seam_search_px apart: each line's seam search
+/// reaches that far to either side, so every pixel between is searched
+/// twice (more where the face is seen obliquely: its metres span fewer
+/// pixels). Lines twice as far apart placed one more face at VGA and one
+/// fewer at 720p on the pallet rows: where a mark lies between the lines
+/// matters, and the denser reading is kept.
 bool endMayBeMarked(const RgbdFrame& frame, const BrickCandidate& face, const AcrossEdge& across, double extent_m,
                     double reach_m, const EdgeEvidenceParams& params)
 {
@@ -69,9 +74,7 @@ bool endMayBeMarked(const RgbdFrame& frame, const BrickCandidate& face, const Ac
   {
     if (at_m <= 0.0) continue;
     const ProbeLine line = across.at(frame.camera, at_m);
-    const double marked_share =
-        1.0 - unmarkedShareAlong(frame, face.plane, line.a_px, line.b_px, line.outward_px, params);
-    if (marked_share >= kMinMarkedShare) return true;
+    if (markedAlong(frame, face.plane, line.a_px, line.b_px, line.outward_px, kMinMarkedShare, params)) return true;
   }
   return false;
 }
