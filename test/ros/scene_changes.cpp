@@ -1,9 +1,14 @@
 // rostest: the front end's result is reused only while nothing in view
 // changes. The synthetic camera shows a new pile every 2 s. Every detection
 // must lie on a brick of its own frame's ground truth (a reused result from
-// the pile before would not), the first detections of each pile must be
-// measured afresh, and frames in between must reuse the front end.
+// the pile before would not), a reused result's keyframe must show the same
+// pile as the frame it is published for, and frames in between must reuse
+// the front end. (A pile's first detections may be reused, from its own
+// first frame: under the full suite's load a later stage may drop that
+// frame after the segmentation made it the keyframe.)
 
+#include <cmath>
+#include <cstdint>
 #include <mutex>
 
 #include <gtest/gtest.h>
@@ -47,10 +52,9 @@ public:
     {
       ++piles_;
       current_pile_ = pile;
-      if (detections->front_end_reused) ++reused_on_new_pile_;
     }
     ++frames_;
-    if (detections->front_end_reused) ++reused_frames_;
+    if (detections->front_end_reused) countReuse(*detections, pile);
     for (const brick_pose::BrickDetection& detection : detections->detections)
     {
       ++detections_;
@@ -60,10 +64,25 @@ public:
 
   int piles() const { std::lock_guard<std::mutex> lock(mutex_); return piles_; }
 
+  /// A reused result and the pile its keyframe showed (the keyframe's stamp
+  /// is the frame's less front_end_age_s).
+  void countReuse(const brick_pose::BrickDetectionArray& detections, double pile)
+  {
+    ++reused_frames_;
+    const std::int64_t age_ns = std::llround(detections.front_end_age_s * 1e9);
+    ros::Time keyframe_stamp;
+    keyframe_stamp.fromNSec(detections.header.stamp.toNSec() - static_cast<std::uint64_t>(age_ns));
+    const brick_pose::BrickTruthArrayConstPtr keyframe_truth = truths_.find(keyframe_stamp);
+    if (!keyframe_truth) return;
+    ++reused_verified_;
+    if (pileKey(*keyframe_truth) != pile) ++reused_from_another_pile_;
+  }
+
   mutable std::mutex mutex_;
   brick_pose_test::TruthByStamp truths_;
   double current_pile_ = 0.0;
-  int piles_ = 0, frames_ = 0, reused_frames_ = 0, reused_on_new_pile_ = 0, detections_ = 0, unmatched_ = 0;
+  int piles_ = 0, frames_ = 0, reused_frames_ = 0, reused_verified_ = 0, reused_from_another_pile_ = 0;
+  int detections_ = 0, unmatched_ = 0;
 };
 
 TEST(SceneChanges, ReusedResultsAreNeverAnEarlierPiles)
@@ -76,7 +95,9 @@ TEST(SceneChanges, ReusedResultsAreNeverAnEarlierPiles)
   while (watch.piles() <= kPiles && ros::WallTime::now() < deadline) ros::WallDuration(0.1).sleep();
   std::lock_guard<std::mutex> lock(watch.mutex_);
   ASSERT_GT(watch.piles_, kPiles) << "piles seen with detections";
-  EXPECT_EQ(watch.reused_on_new_pile_, 0) << "a new pile's first detections came from the pile before";
+  EXPECT_EQ(watch.reused_from_another_pile_, 0) << "reused results whose keyframe showed another pile, of "
+                                                << watch.reused_verified_ << " whose keyframe's truth was kept";
+  EXPECT_GT(watch.reused_verified_, watch.reused_frames_ / 2) << "reused results whose keyframe's truth was kept";
   EXPECT_EQ(watch.unmatched_, 0) << "detections on no top face of their own frame's truth, of " << watch.detections_;
   EXPECT_GT(watch.reused_frames_, watch.frames_ / 2) << "a static pile's front end must be reused";
   EXPECT_GT(watch.detections_, 0);
