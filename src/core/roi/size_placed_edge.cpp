@@ -13,9 +13,10 @@ namespace
 /// A box may end along a line when at least this share of it shows a mark
 /// (a line, groove, step, or what hides one): a box's end runs all along
 /// it, and print (a label's edge, a barcode) marks a stretch or two of a
-/// box's four. At half, the labels on the rig's pallet boxes kept 14 whole
-/// tops of 160 at VGA partial that three quarters places; no face of the
-/// rig or of mOSD is then complete that is not a whole top.
+/// line's four. At half, the labels on the rig's pallet boxes kept 14 more
+/// whole tops (of 160 at VGA) partial than at three quarters, and at three
+/// quarters still no face of the rig or of mOSD is complete that is not a
+/// whole top.
 constexpr double kMinMarkedShare = 0.75;
 
 /// A line across the face, parallel to the edge opposite `edge`, at
@@ -26,6 +27,9 @@ struct ProbeLine
   Eigen::Vector2d a_px, b_px, outward_px;
 };
 
+/// The face seen from the edge across from `edge`: the direction across
+/// it (on the face's plane, toward `edge`), the face's own extent that way,
+/// and the lines parallel to that edge at any extent.
 class AcrossEdge
 {
 public:
