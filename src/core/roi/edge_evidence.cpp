@@ -592,11 +592,28 @@ double endMargin(double length_px, const EdgeEvidenceParams& params)
   return std::min(0.25, std::max(params.end_margin_fraction, params.probe_px / length_px));
 }
 
-/// Stretches an edge is examined in: short edges in fewer, each ~20 px at least.
-int stretchCount(double length_px, double margin, const EdgeEvidenceParams& params)
+/// The stretches an edge from `a_px` to `b_px` is judged in, each on its
+/// own: its ends left out (endMargin), and short edges in fewer stretches,
+/// each ~20 px at least. Stretch k runs from start(k) to start(k + 1).
+class EdgeStretches
 {
-  return std::max(1, std::min(params.stretches, static_cast<int>((1.0 - 2.0 * margin) * length_px / 20.0)));
-}
+public:
+  EdgeStretches(const Eigen::Vector2d& a_px, const Eigen::Vector2d& b_px, const EdgeEvidenceParams& params)
+  {
+    const double length_px = (b_px - a_px).norm();
+    const double margin = endMargin(length_px, params);
+    start_ = a_px + margin * (b_px - a_px);
+    end_ = b_px - margin * (b_px - a_px);
+    count_ = std::max(1, std::min(params.stretches, static_cast<int>((1.0 - 2.0 * margin) * length_px / 20.0)));
+  }
+
+  int count() const { return count_; }
+  Eigen::Vector2d start(int k) const { return start_ + (static_cast<double>(k) / count_) * (end_ - start_); }
+
+private:
+  Eigen::Vector2d start_, end_;
+  int count_ = 1;
+};
 
 /// The stretch from `from` to `to` of an edge, judged: its profile across
 /// the edge, with the outward band reaching twice as far (a stereo shadow
@@ -624,17 +641,14 @@ EdgeEvidence classifyEdge(const RgbdFrame& frame, const PlaneFit& plane, const E
   const double length_px = (b_px - a_px).norm();
   if (!judgeable(length_px, outward_px, plane)) return worst;
   const Eigen::Vector2d outward = outward_px.normalized();
-  const double margin = endMargin(length_px, params);
-  const Eigen::Vector2d start = a_px + margin * (b_px - a_px), end = b_px - margin * (b_px - a_px);
-  const int stretches = stretchCount(length_px, margin, params);
+  const EdgeStretches spans(a_px, b_px, params);
+  const int stretches = spans.count();
   double lowest_wall_m = std::numeric_limits<double>::infinity(), highest_wall_m = -lowest_wall_m;
   // (Clear walls: nothing reaches over the face inside them.)
   int walls = 0, clear_walls = 0, drops = 0, drops_beside_walls = 0;
   for (int k = 0; k < stretches; ++k)
   {
-    const Eigen::Vector2d from = start + (static_cast<double>(k) / stretches) * (end - start);
-    const Eigen::Vector2d to = start + (static_cast<double>(k + 1) / stretches) * (end - start);
-    const EdgeEvidence stretch = judgeSpan(frame, plane, from, to, outward, params);
+    const EdgeEvidence stretch = judgeSpan(frame, plane, spans.start(k), spans.start(k + 1), outward, params);
     if (k == 0 || badness(stretch.kind) > badness(worst.kind)) worst = stretch;
     walls += stretch.kind == EdgeKind::kStepUp ? 1 : 0;
     const bool clear = stretch.inside_above_fraction <= kMaxInsideAboveFraction;
@@ -677,17 +691,15 @@ bool markedAlong(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vec
   const double length_px = (b_px - a_px).norm();
   if (!judgeable(length_px, outward_px, plane)) return true;
   const Eigen::Vector2d outward = outward_px.normalized();
-  const double margin = endMargin(length_px, params);
-  const Eigen::Vector2d start = a_px + margin * (b_px - a_px), end = b_px - margin * (b_px - a_px);
-  const int stretches = stretchCount(length_px, margin, params);
+  const EdgeStretches spans(a_px, b_px, params);
+  const int stretches = spans.count();
   // Stops as soon as the share is settled either way.
   const double needed = min_share * stretches;
   int marked = 0, unmarked = 0;
   for (int k = 0; k < stretches && marked < needed && stretches - unmarked >= needed; ++k)
   {
-    const Eigen::Vector2d from = start + (static_cast<double>(k) / stretches) * (end - start);
-    const Eigen::Vector2d to = start + (static_cast<double>(k + 1) / stretches) * (end - start);
-    (judgeSpan(frame, plane, from, to, outward, params).kind == EdgeKind::kMaskEdge ? unmarked : marked) += 1;
+    const EdgeKind kind = judgeSpan(frame, plane, spans.start(k), spans.start(k + 1), outward, params).kind;
+    (kind == EdgeKind::kMaskEdge ? unmarked : marked) += 1;
   }
   return marked >= needed;
 }
