@@ -39,6 +39,14 @@ std::string truncation(const BrickCandidate& candidate)
   return "no edge";
 }
 
+std::vector<const BrickType*> typesFor(const BrickCatalogue& catalogue, const std::string& type_name)
+{
+  std::vector<const BrickType*> types;
+  for (const BrickType& type : catalogue.types())
+    if (type_name.empty() || type.name == type_name) types.push_back(&type);
+  return types;
+}
+
 void addTypeDoubt(BrickCandidate& candidate, const std::string& doubt)
 {
   candidate.type_doubt = candidate.type_doubt.empty() ? doubt : doubt + "; " + candidate.type_doubt;

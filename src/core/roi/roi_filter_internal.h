@@ -5,6 +5,7 @@
 // helpers. Internal to the core library: not installed.
 
 #include <string>
+#include <vector>
 
 #include "brick_pose/roi/roi_filter.h"
 
@@ -53,6 +54,9 @@ bool anyTruncated(const BrickCandidate& candidate);
 
 /// "edge 2: occlusion boundary" for the first truncated edge.
 std::string truncation(const BrickCandidate& candidate);
+
+/// The catalogue's types named `type_name`, or all of them for an empty name.
+std::vector<const BrickType*> typesFor(const BrickCatalogue& catalogue, const std::string& type_name);
 
 /// Puts `doubt` first in the candidate's type_doubt, before any it had.
 void addTypeDoubt(BrickCandidate& candidate, const std::string& doubt);

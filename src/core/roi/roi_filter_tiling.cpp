@@ -25,6 +25,7 @@
 namespace brick_pose
 {
 using roi_internal::addTypeDoubt;
+using roi_internal::typesFor;
 using roi_internal::describe;
 using roi_internal::partRejection;
 using roi_internal::anyTruncated;
@@ -97,13 +98,6 @@ int supportedTileCount(const FaceTiling& tiling)
                                         [](const FaceTile& tile) { return firstUnseenCut(tile) < 0; }));
 }
 
-std::vector<const BrickType*> typesFor(const BrickCatalogue& catalogue, const std::string& type_name)
-{
-  std::vector<const BrickType*> types;
-  for (const BrickType& type : catalogue.types())
-    if (type_name.empty() || type.name == type_name) types.push_back(&type);
-  return types;
-}
 /// Each of some types on its bottom, then lying on a side or standing on
 /// an end (lyingVariants), and which type each pose is of.
 struct TypePoses

@@ -24,6 +24,7 @@
 namespace brick_pose
 {
 using roi_internal::addTypeDoubt;
+using roi_internal::typesFor;
 using roi_internal::describe;
 using roi_internal::sideAxis;
 using roi_internal::anyTruncated;
@@ -388,8 +389,7 @@ std::optional<RoiFilter::StandingHeight> RoiFilter::standingHeight(const RgbdFra
 std::vector<double> RoiFilter::extentsStandingThere(const RgbdFrame& frame, const FrameContext& context,
                                                    const BrickCandidate& face) const
 {
-  std::vector<const BrickType*> shown;
-  for (const BrickType& type : catalogue_.types()) shown.push_back(&type);
+  std::vector<const BrickType*> shown = typesFor(catalogue_, "");
   for (const BrickType& pose : lying_variants_) shown.push_back(&pose);
   const std::optional<std::vector<const BrickType*>> poses = posesStandingMostExactly(frame, context, face, shown);
   if (!poses) return catalogue_extents_m_;
@@ -434,9 +434,8 @@ void RoiFilter::doubtComposedTop(const RgbdFrame& frame, const FrameContext& con
   // would need a box beneath them no catalogue has, and two box_flat there
   // a box lying beneath each, 2 cm off, where a box_large stands on the
   // ground.
-  std::vector<const BrickType*> all_types;
-  for (const BrickType& each : catalogue_.types()) all_types.push_back(&each);
-  const std::vector<const BrickType*> exact = typesStandingWhereTheFaceIs(frame, context, candidate, all_types).types;
+  const std::vector<const BrickType*> exact =
+      typesStandingWhereTheFaceIs(frame, context, candidate, typesFor(catalogue_, "")).types;
   std::vector<BrickType> standing;
   for (const BrickType* each : exact) standing.push_back(*each);
   const Composition composition = smallerTypeTiling(standing, *type, params_.dimensions.tolerance_m);
