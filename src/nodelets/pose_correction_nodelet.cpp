@@ -229,6 +229,7 @@ private:
     detection.complete_face = candidate.complete;
     detection.partial_reason =
         candidate.complete ? "" : (candidate.partial_reason.empty() ? "top face not wholly in view" : candidate.partial_reason);
+    detection.other_possible_types = candidate.other_possible_types;
     detection.pose_source = source;
     detection.registration_pose = tf2::toMsg(estimate.registration.pose);
     detection.refinement = toString(estimate.refinement);
@@ -360,6 +361,7 @@ private:
       response.pose.pose = tf2::toMsg(Eigen::Isometry3d(camera_T_target->inverse() * fromPose(detection.pose.pose)));
     }
     response.type = detection.type;
+    response.other_possible_types = detection.other_possible_types;
     response.id = detection.id;
     response.frame = detection.frame;
     response.dimensions = detection.dimensions;

@@ -139,10 +139,16 @@ TEST(SizePlacedEdge, ALineAcrossFromAnotherLineIsNoEnd)
 
 TEST(SizePlacedEdge, TheCataloguesExtentsAreEveryTypesLengthWidthAndHeightOnce)
 {
-  BrickType large{"box_large", 0.40, 0.30, 0.25};
-  BrickType small{"box_small", 0.30, 0.20, 0.15};
-  BrickType flat{"box_flat", 0.30, 0.20, 0.0705};
-  const std::vector<double> extents = catalogueExtentsM(BrickCatalogue({large, small, flat}));
+  const auto box = [](const std::string& name, double length_m, double width_m, double height_m) {
+    BrickType type;
+    type.name = name;
+    type.length_m = length_m;
+    type.width_m = width_m;
+    type.height_m = height_m;
+    return type;
+  };
+  const std::vector<double> extents = catalogueExtentsM(BrickCatalogue(
+      {box("box_large", 0.40, 0.30, 0.25), box("box_small", 0.30, 0.20, 0.15), box("box_flat", 0.30, 0.20, 0.0705)}));
   const std::vector<double> expected{0.0705, 0.15, 0.20, 0.25, 0.30, 0.40};
   ASSERT_EQ(extents.size(), expected.size());
   for (std::size_t k = 0; k < expected.size(); ++k) EXPECT_NEAR(extents[k], expected[k], 1e-9);

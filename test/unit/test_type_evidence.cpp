@@ -55,6 +55,28 @@ TEST(TypeEvidence, OneTopTwoHeightsIsADoubtUntilASideReachesTheSupport)
   EXPECT_FALSE(typeDoubt(rivals, kSmall, 0.30, 0.20, {side(0.05, false)}, SideFaceParams(), {&kFlat}).empty());
 }
 
+TEST(TypeEvidence, TheRivalsLeftOpenAreTheOnesTheDoubtNames)
+{
+  const BrickType tall = box("box_tall", 0.30, 0.20, 0.40);
+  const std::vector<const BrickType*> rivals{&kSmall, &kFlat, &tall};
+  // No side seen: both other heights stay open, in the rivals' order.
+  const std::vector<const BrickType*> open = rivalsInDoubt(rivals, kSmall, 0.30, 0.20, {});
+  ASSERT_EQ(open.size(), 2u);
+  EXPECT_EQ(open[0], &kFlat);
+  EXPECT_EQ(open[1], &tall);
+  EXPECT_EQ(typeDoubtText(kSmall, open), typeDoubt(rivals, kSmall, 0.30, 0.20, {}));
+  // A side 0.15 m down to the support rules both out.
+  EXPECT_TRUE(rivalsInDoubt(rivals, kSmall, 0.30, 0.20, {side(0.15, true)}).empty());
+  EXPECT_TRUE(typeDoubtText(kSmall, {}).empty());
+  // A side ending 0.10 m down on something: the flat box may stand on a
+  // box beneath it unless it can stand on the support alone; the tall one
+  // stays open (the rest of its side hidden by a neighbour).
+  const std::vector<const BrickType*> on_something = rivalsInDoubt(rivals, kSmall, 0.30, 0.20, {side(0.10, false)},
+                                                                   SideFaceParams(), {&kFlat});
+  ASSERT_EQ(on_something.size(), 1u);
+  EXPECT_EQ(on_something[0], &tall);
+}
+
 TEST(TypeEvidence, ATypeStandsOnTheSupportAloneWhenNothingFitsBeneathIt)
 {
   const double tolerance_m = 0.025;

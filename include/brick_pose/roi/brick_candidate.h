@@ -93,6 +93,13 @@ struct BrickCandidate
   /// smaller catalogue tops touching make up the same face.
   /// Empty when the type is certain; a doubtful type is never complete.
   std::string type_doubt;
+  /// The other catalogue types (or lying poses of one, named as in
+  /// type_doubt) this face fits as well as type_name: of its size, standing
+  /// as exactly at its height, and not ruled out by a side seen. A box_flat
+  /// on a box_small and a box_small on a box_flat show the same top at the
+  /// same height, and only their sides tell them apart. Empty when the
+  /// evidence leaves type_name alone.
+  std::vector<std::string> other_possible_types;
   /// True only when the face is seen whole as a brick's top: length and
   /// width match the catalogue type, it faces up, all four edges are real
   /// edges, and any side face seen to its foot has the catalogue height.

@@ -67,6 +67,17 @@ std::string typeDoubt(const std::vector<const BrickType*>& rivals, const BrickTy
                       const SideFaceParams& params = SideFaceParams(),
                       const std::vector<const BrickType*>& on_support_alone = {});
 
+/// The rivals typeDoubt names, in `rivals`' order: the types (and lying
+/// variants) the face may be as well as `best`.
+std::vector<const BrickType*> rivalsInDoubt(const std::vector<const BrickType*>& rivals, const BrickType& best,
+                                            double length_m, double width_m,
+                                            const std::vector<SideFaceEvidence>& sides,
+                                            const SideFaceParams& params = SideFaceParams(),
+                                            const std::vector<const BrickType*>& on_support_alone = {});
+
+/// typeDoubt's text for `best` and the rivals left open; empty when none is.
+std::string typeDoubtText(const BrickType& best, const std::vector<const BrickType*>& open);
+
 /// The heights a stack of catalogue items can make: any number of them, in
 /// any of the orientations they can lie in, one on another. A top `h` above
 /// the supporting plane of a box `b` tall means the box stands on the

@@ -293,8 +293,11 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
       standing ? typesOnSupportAlone(rivals, standing->height_m, standing->levels_m,
                                      params_.height_above_support_tolerance_m)
                : std::vector<const BrickType*>();
-  candidate.type_doubt =
-      typeDoubt(rivals, *best, candidate.length_m, candidate.width_m, sides, params_.sides, on_support_alone);
+  const std::vector<const BrickType*> open =
+      rivalsInDoubt(rivals, *best, candidate.length_m, candidate.width_m, sides, params_.sides, on_support_alone);
+  candidate.type_doubt = typeDoubtText(*best, open);
+  candidate.other_possible_types.clear();
+  for (const BrickType* type : open) candidate.other_possible_types.push_back(type->name);
   return std::nullopt;
 }
 

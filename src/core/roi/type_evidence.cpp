@@ -102,20 +102,35 @@ std::vector<BrickType> lyingVariants(const std::vector<BrickType>& types)
   return variants;
 }
 
-std::string typeDoubt(const std::vector<const BrickType*>& rivals, const BrickType& best, double length_m,
-                      double width_m, const std::vector<SideFaceEvidence>& sides, const SideFaceParams& params,
-                      const std::vector<const BrickType*>& on_support_alone)
+std::vector<const BrickType*> rivalsInDoubt(const std::vector<const BrickType*>& rivals, const BrickType& best,
+                                            double length_m, double width_m,
+                                            const std::vector<SideFaceEvidence>& sides, const SideFaceParams& params,
+                                            const std::vector<const BrickType*>& on_support_alone)
 {
-  std::string others;
+  std::vector<const BrickType*> open;
   for (const BrickType* type : rivals)
   {
     const bool alone = std::find(on_support_alone.begin(), on_support_alone.end(), type) != on_support_alone.end();
     if (type != &best && !sameShape(*type, best) && !ruledOut(*type, best, length_m, width_m, sides, params, alone))
-      others += (others.empty() ? "" : ", ") + type->name;
+      open.push_back(type);
   }
-  if (others.empty()) return {};
+  return open;
+}
+
+std::string typeDoubtText(const BrickType& best, const std::vector<const BrickType*>& open)
+{
+  if (open.empty()) return {};
+  std::string others;
+  for (const BrickType* type : open) others += (others.empty() ? "" : ", ") + type->name;
   return "type uncertain: the face fits " + best.name + " and " + others +
          ", and no side seen tells their heights apart";
+}
+
+std::string typeDoubt(const std::vector<const BrickType*>& rivals, const BrickType& best, double length_m,
+                      double width_m, const std::vector<SideFaceEvidence>& sides, const SideFaceParams& params,
+                      const std::vector<const BrickType*>& on_support_alone)
+{
+  return typeDoubtText(best, rivalsInDoubt(rivals, best, length_m, width_m, sides, params, on_support_alone));
 }
 
 StackHeights::StackHeights(const std::vector<double>& item_heights_m, double max_height_m, double resolution_m)
