@@ -88,13 +88,22 @@ std::string ratioCell(int numerator, int denominator)
          std::to_string(denominator) + ")";
 }
 
+/// The recall cell: whole tops found, and how many more were met with
+/// their type left open.
+std::string recallCell(const eval::ScoreTally& tally)
+{
+  const std::string found = ratioCell(tally.whole_tops_found, tally.whole_tops);
+  if (tally.whole_tops_type_left_open == 0) return found;
+  return found + " +" + std::to_string(tally.whole_tops_type_left_open) + " open";
+}
+
 void printRow(const std::string& scene, const std::string& mode, const std::string& resolution, const CellStats& stats)
 {
   const eval::ScoreTally& tally = stats.tally;
   std::vector<double> dims = tally.length_error_mm;
   dims.insert(dims.end(), tally.width_error_mm.begin(), tally.width_error_mm.end());
   std::printf("| %s | %s | %s | %d | %s | %s | %s | %d / %d | %s | %s | %s | %s | %s |\n", scene.c_str(),
-              mode.c_str(), resolution.c_str(), tally.frames, ratioCell(tally.whole_tops_found, tally.whole_tops).c_str(),
+              mode.c_str(), resolution.c_str(), tally.frames, recallCell(tally).c_str(),
               ratioCell(tally.legacy_tops_found, tally.legacy_tops).c_str(),
               ratioCell(tally.legacy_true_positives, tally.candidates).c_str(), tally.false_complete,
               tally.complete_candidates, medianP95(tally.rotation_deg, "%.2f").c_str(),
@@ -173,7 +182,8 @@ void printTables(const RunInfo& run, const RigResults& rig, const MosdResults& m
               "framed by the rig's defaults for its kind, depth model as named). "
               "Whole tops: catalogue top faces facing up whose edges the rig sees all in the image and unhidden, "
               ">= 95%% visible; recall counts a candidate "
-              "holding >= 70%% of one. False complete: candidates marked complete that are not a whole top of their "
+              "holding >= 70%% of one, of its type (\"+N open\": N more met by a candidate of another type that names "
+              "theirs among its other_possible_types, where only a side would tell). False complete: candidates marked complete that are not a whole top of their "
               "type. Errors on the whole tops found: face-frame rotation (mod the half turn), centre, |length|/|width|.\n\n",
               run.planned_frames, run.options.frames, std::max(1, run.options.frames / 4));
   std::printf("| scene class | mode | resolution | frames | recall (whole tops) | recall (>= 60%% visible) | precision "
@@ -302,7 +312,8 @@ std::string jsonLine(const RunInfo& run, const RigResults& rig, const MosdResult
     if (!run.modes[m].mode) continue;
     const CellStats rig_mode = mergedCells(rig.cells, kAny, m, kAny);
     json.number("whole_top_recall_" + run.modes[m].name, rig_mode.tally.recall())
-        .number("false_complete_" + run.modes[m].name, rig_mode.tally.false_complete);
+        .number("false_complete_" + run.modes[m].name, rig_mode.tally.false_complete)
+        .number("whole_tops_type_left_open_" + run.modes[m].name, rig_mode.tally.whole_tops_type_left_open);
     if (!mosd.ran) continue;
     json.number("mosd_learn_recall_" + run.modes[m].name, mosd.modes[m].tally.recall())
         .number("mosd_learn_false_complete_" + run.modes[m].name, mosd.modes[m].tally.false_complete);

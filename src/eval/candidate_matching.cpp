@@ -169,6 +169,11 @@ FrameMatch matchCandidates(const std::vector<BrickCandidate>& candidates, const 
             result.outcome = CandidateOutcome::kWholeTop;
             whole_taken[static_cast<std::size_t>(face_index)] = true;
           }
+          result.type_left_open = result.outcome == CandidateOutcome::kWrongType && face.whole_in_view &&
+                                  !face.whole_uncertain && result.coverage >= params.min_top_coverage &&
+                                  std::find(candidate.other_possible_types.begin(),
+                                            candidate.other_possible_types.end(),
+                                            face.type) != candidate.other_possible_types.end();
           if (typeMatches(candidate, face) && !legacy_taken[static_cast<std::size_t>(face_index)])
           {
             result.legacy_true_positive = true;
@@ -198,11 +203,16 @@ FrameMatch matchCandidates(const std::vector<BrickCandidate>& candidates, const 
     top.visible_fraction = face.visible_fraction;
     top.legacy_found = legacy_taken[f];
     for (const CandidateMatch& candidate : match.candidates)
-      if (candidate.face == top.face && candidate.outcome == CandidateOutcome::kWholeTop)
+    {
+      if (candidate.face != top.face) continue;
+      if (candidate.outcome == CandidateOutcome::kWholeTop)
       {
         top.found = true;
         top.found_complete = candidate.complete;
       }
+      top.found_type_left_open = top.found_type_left_open || candidate.type_left_open;
+    }
+    top.found_type_left_open = top.found_type_left_open && !top.found;
     match.tops.push_back(top);
   }
   return match;

@@ -46,6 +46,7 @@ void ScoreTally::add(const FrameMatch& match, double legacy_min_visible_fraction
       ++whole_tops;
       if (top.found) ++whole_tops_found;
       if (top.found_complete) ++whole_tops_found_complete;
+      if (top.found_type_left_open) ++whole_tops_type_left_open;
     }
     if (top.visible_fraction >= legacy_min_visible_fraction)
     {
@@ -61,7 +62,7 @@ void ScoreTally::merge(const ScoreTally& other)
   static constexpr int ScoreTally::*kCounts[] = {
       &ScoreTally::frames,           &ScoreTally::candidates,        &ScoreTally::complete_candidates,
       &ScoreTally::false_complete,   &ScoreTally::whole_tops,        &ScoreTally::whole_tops_found,
-      &ScoreTally::whole_tops_found_complete, &ScoreTally::legacy_tops, &ScoreTally::legacy_tops_found,
+      &ScoreTally::whole_tops_found_complete, &ScoreTally::whole_tops_type_left_open, &ScoreTally::legacy_tops, &ScoreTally::legacy_tops_found,
       &ScoreTally::legacy_true_positives};
   static constexpr std::vector<double> ScoreTally::*kErrorSeries[] = {
       &ScoreTally::rotation_deg,    &ScoreTally::normal_deg,     &ScoreTally::centre_mm,

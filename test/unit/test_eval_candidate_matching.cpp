@@ -165,6 +165,47 @@ TEST(CandidateMatching, WrongTypeAndDuplicateAreFalseCompletes)
   EXPECT_TRUE(result.candidates[2].false_complete);
 }
 
+TEST(CandidateMatching, AWrongTypeNamingTheTrueOneAmongItsPossibleTypesLeavesTheTopsTypeOpenNotFound)
+{
+  BrickCandidate open_to_red = candidateOver(2, 10, 2, 22, false, "green");
+  open_to_red.other_possible_types = {"blue", "red"};
+  BrickCandidate open_to_blue = candidateOver(2, 10, 2, 22, false, "green");
+  open_to_blue.other_possible_types = {"blue"};
+  // Half the top: too little of it, whatever its types.
+  BrickCandidate half = candidateOver(2, 10, 2, 12, false, "green");
+  half.other_possible_types = {"red"};
+  // On the hidden top: no whole top to leave open.
+  BrickCandidate hidden = candidateOver(2, 10, 30, 50, false, "green");
+  hidden.other_possible_types = {"red"};
+
+  eval::ScoreTally tally;
+  const eval::FrameMatch left_open = match({open_to_red, hidden});
+  EXPECT_EQ(left_open.candidates[0].outcome, eval::CandidateOutcome::kWrongType);
+  EXPECT_TRUE(left_open.candidates[0].type_left_open);
+  EXPECT_FALSE(left_open.candidates[1].type_left_open);
+  EXPECT_FALSE(left_open.tops[0].found);
+  EXPECT_TRUE(left_open.tops[0].found_type_left_open);
+  EXPECT_FALSE(left_open.tops[1].found_type_left_open);
+  tally.add(left_open, 0.6);
+  for (const eval::FrameMatch& other : {match({open_to_blue}), match({half})})
+  {
+    EXPECT_FALSE(other.candidates[0].type_left_open);
+    EXPECT_FALSE(other.tops[0].found_type_left_open);
+    tally.add(other, 0.6);
+  }
+  // Found outright, a top is not counted open too.
+  const eval::FrameMatch found = match({open_to_red, candidateOver(2, 10, 2, 22, false)});
+  EXPECT_TRUE(found.tops[0].found);
+  EXPECT_FALSE(found.tops[0].found_type_left_open);
+  tally.add(found, 0.6);
+  EXPECT_EQ(tally.whole_tops, 4);
+  EXPECT_EQ(tally.whole_tops_found, 1);
+  EXPECT_EQ(tally.whole_tops_type_left_open, 1);
+  eval::ScoreTally merged;
+  merged.merge(tally);
+  EXPECT_EQ(merged.whole_tops_type_left_open, 1);
+}
+
 TEST(CandidateMatching, TopTheTruthCannotJudgeIsNeitherRightNorFalse)
 {
   const eval::FrameMatch result = match({candidateOver(25, 35, 30, 50, true)});

@@ -79,6 +79,10 @@ struct CandidateMatch
   /// The earlier benchmark's rule: mostly one top face (any visibility), of
   /// the candidate's type, the first candidate on it.
   bool legacy_true_positive = false;
+  /// kWrongType on a whole top, covered, whose type the candidate names
+  /// among its other_possible_types: the face found, its type left open
+  /// where only a side would tell.
+  bool type_left_open = false;
   bool has_errors = false;   ///< Errors are measured on kWholeTop matches with geometry.
   TopFaceErrors errors;
 };
@@ -93,6 +97,8 @@ struct TopMatch
   bool found = false;           ///< A kWholeTop candidate on it.
   bool found_complete = false;  ///< ... marked complete.
   bool legacy_found = false;    ///< A legacy true positive on it.
+  /// Not found, but a candidate on it leaves its type open (type_left_open).
+  bool found_type_left_open = false;
 };
 
 struct FrameMatch

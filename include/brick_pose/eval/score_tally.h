@@ -25,6 +25,9 @@ struct ScoreTally
   int whole_tops = 0;           ///< Truth tops whole in view.
   int whole_tops_found = 0;     ///< ... matched by a kWholeTop candidate.
   int whole_tops_found_complete = 0;
+  /// Whole tops not found, but met by a candidate leaving their type open
+  /// (TopMatch::found_type_left_open).
+  int whole_tops_type_left_open = 0;
   int legacy_tops = 0;          ///< Truth tops >= legacy_min_visible_fraction visible.
   int legacy_tops_found = 0;
   int legacy_true_positives = 0;
