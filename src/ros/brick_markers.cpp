@@ -83,10 +83,13 @@ visualization_msgs::Marker label(const BrickDetection& detection, int id)
   marker.pose.position.z += lifted.z();
   marker.scale.z = 0.04;
   marker.color.r = marker.color.g = marker.color.b = marker.color.a = 1.0f;
-  char text[128];
-  std::snprintf(text, sizeof(text), "%s %.2f%s", detection.frame.c_str(), detection.fitness,
-                detection.pickable ? " pick" : "");
-  marker.text = text;
+  char fitness[16];
+  std::snprintf(fitness, sizeof(fitness), " %.2f", detection.fitness);
+  marker.text = detection.frame + fitness + (detection.pickable ? " pick" : "");
+  // A type only a side would tell: the others it may be, beside the name.
+  std::string others;
+  for (const std::string& type : detection.other_possible_types) others += (others.empty() ? "" : ", ") + type;
+  if (!others.empty()) marker.text += " (or " + others + ")";
   return marker;
 }
 }  // namespace
