@@ -183,8 +183,8 @@ void printTables(const RunInfo& run, const RigResults& rig, const MosdResults& m
               "Whole tops: catalogue top faces facing up whose edges the rig sees all in the image and unhidden, "
               ">= 95%% visible; recall counts a candidate "
               "holding >= 70%% of one, of its type (\"+N open\": N more met by a candidate of another type that names "
-              "theirs among its other_possible_types, where only a side would tell). False complete: candidates marked complete that are not a whole top of their "
-              "type. Errors on the whole tops found: face-frame rotation (mod the half turn), centre, |length|/|width|.\n\n",
+              "theirs among its other_possible_types, where only a side would tell). False complete: candidates "
+              "marked complete that are not a whole top of their type. Errors on the whole tops found: face-frame rotation (mod the half turn), centre, |length|/|width|.\n\n",
               run.planned_frames, run.options.frames, std::max(1, run.options.frames / 4));
   std::printf("| scene class | mode | resolution | frames | recall (whole tops) | recall (>= 60%% visible) | precision "
               "| false complete / complete | rot deg median / p95 | centre mm median / p95 | dims mm median "

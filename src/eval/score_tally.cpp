@@ -62,8 +62,8 @@ void ScoreTally::merge(const ScoreTally& other)
   static constexpr int ScoreTally::*kCounts[] = {
       &ScoreTally::frames,           &ScoreTally::candidates,        &ScoreTally::complete_candidates,
       &ScoreTally::false_complete,   &ScoreTally::whole_tops,        &ScoreTally::whole_tops_found,
-      &ScoreTally::whole_tops_found_complete, &ScoreTally::whole_tops_type_left_open, &ScoreTally::legacy_tops, &ScoreTally::legacy_tops_found,
-      &ScoreTally::legacy_true_positives};
+      &ScoreTally::whole_tops_found_complete, &ScoreTally::whole_tops_type_left_open, &ScoreTally::legacy_tops,
+      &ScoreTally::legacy_tops_found,         &ScoreTally::legacy_true_positives};
   static constexpr std::vector<double> ScoreTally::*kErrorSeries[] = {
       &ScoreTally::rotation_deg,    &ScoreTally::normal_deg,     &ScoreTally::centre_mm,
       &ScoreTally::length_error_mm, &ScoreTally::width_error_mm, &ScoreTally::corner_error_px};
