@@ -139,20 +139,15 @@ TEST(SizePlacedEdge, ALineAcrossFromAnotherLineIsNoEnd)
 
 TEST(SizePlacedEdge, TheCataloguesExtentsAreEveryTypesLengthWidthAndHeightOnce)
 {
-  const auto box = [](const std::string& name, double length_m, double width_m, double height_m) {
-    BrickType type;
-    type.name = name;
-    type.length_m = length_m;
-    type.width_m = width_m;
-    type.height_m = height_m;
-    return type;
-  };
-  const std::vector<double> extents = catalogueExtentsM(BrickCatalogue(
-      {box("box_large", 0.40, 0.30, 0.25), box("box_small", 0.30, 0.20, 0.15), box("box_flat", 0.30, 0.20, 0.0705)}));
-  const std::vector<double> expected{0.0705, 0.15, 0.20, 0.25, 0.30, 0.40};
+  // config/boxes.yaml: box_large 0.40 x 0.30 x 0.25, box_small and box_flat
+  // 0.30 x 0.20, 0.15 and 0.07 tall (0.30 and 0.20 once each).
+  const std::vector<double> extents =
+      catalogueExtentsM(BrickCatalogue::fromYamlFile(BRICK_POSE_SOURCE_DIR "/config/boxes.yaml"));
+  const std::vector<double> expected{0.07, 0.15, 0.20, 0.25, 0.30, 0.40};
   ASSERT_EQ(extents.size(), expected.size());
   for (std::size_t k = 0; k < expected.size(); ++k) EXPECT_NEAR(extents[k], expected[k], 1e-9);
 }
+
 /// A face on the plane z = 1.5 m, x from x0 to x1 and y from y0 to y1;
 /// edge 1 runs along x = x1, edge 3 along x = x0.
 BrickCandidate rectangle(double x0, double x1, double y0, double y1)
