@@ -80,6 +80,7 @@ ParamBindings frontEndBindings(FrontEndParams& params)
           {"colour_free_max_noise_at_1m_m", &colour_free.max_noise_at_1m_m},
           {"colour_free_parallel", &colour_free.parallel},
           {"colour_free_skip_supporting_plane", &params.skip_supporting_plane},
+          {"region_growing_block_angle_mrad", &params.region_growing.block_angle_mrad},
           {"crop_min_depth_m", &cloud.min_depth_m},
           {"crop_max_depth_m", &cloud.max_depth_m},
           {"outlier_removal", &cloud.outlier_removal_enabled},

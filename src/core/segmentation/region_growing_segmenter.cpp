@@ -13,6 +13,7 @@
 
 #include "brick_pose/common/angles.h"
 #include "brick_pose/common/errors.h"
+#include "brick_pose/common/rounding.h"
 #include "brick_pose/frame/organized_cloud.h"
 #include "brick_pose/geometry/plane_fit.h"
 
@@ -107,7 +108,7 @@ std::optional<Segment> floodFootprint(const RgbdFrame& frame, const pcl::PointCl
 void RegionGrowingParams::validate() const
 {
   const ParamCheck check("region growing");
-  check.require(stride_px >= 1, "stride_px", "must be >= 1");
+  check.require(block_angle_mrad > 0.0, "block_angle_mrad", "must be > 0");
   check.require(normal_smoothing_size > 0.0, "normal_smoothing_size", "must be > 0");
   check.require(max_depth_change_factor > 0.0, "max_depth_change_factor", "must be > 0");
   check.require(neighbours >= 3, "neighbours", "must be >= 3");
@@ -124,12 +125,19 @@ void RegionGrowingParams::validate() const
 
 RegionGrowingSegmenter::RegionGrowingSegmenter(const RegionGrowingParams& params) : params_(params) { params_.validate(); }
 
+int RegionGrowingSegmenter::strideFor(double fx_px) const
+{
+  const double stride_px = 1e-3 * params_.block_angle_mrad * fx_px;
+  return std::isfinite(stride_px) ? std::max(1, roundToInt(stride_px)) : 1;
+}
+
 std::vector<Segment> RegionGrowingSegmenter::segment(const RgbdFrame& frame) const
 {
   std::vector<int> source_pixels;
   // Block medians rather than every stride-th pixel: sunlight leaves so many
   // dropouts that the integral-image normals of a strided cloud vanish.
-  const pcl::PointCloud<pcl::PointXYZ>::Ptr strided = makeBlockMedianCloud(frame, params_.stride_px, source_pixels);
+  const pcl::PointCloud<pcl::PointXYZ>::Ptr strided =
+      makeBlockMedianCloud(frame, strideFor(frame.camera.fx_px), source_pixels);
   // PCL's integral-image normals read outside a cloud smaller than their
   // window (and then leave no normals); such a frame holds no plate anyway.
   const auto min_side = static_cast<std::uint32_t>(2.0 * std::ceil(params_.normal_smoothing_size) + 2.0);
