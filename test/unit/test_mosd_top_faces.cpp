@@ -172,7 +172,7 @@ TEST(MosdTopFaces, RegionGrowingFindsTheWholeTopsAtTheKinectsResolution)
   FrontEndParams params;
   params.mode = SegmentationMode::kRegionGrowing;
   const FrontEnd front_end(catalogue, params);
-  EXPECT_EQ(RegionGrowingSegmenter(params.region_growing).strideFor(525.0), 3);
+  EXPECT_EQ(RegionGrowingSegmenter(params.region_growing).strideFor(525.0, 640, 480), 3);
   int whole_tops = 0, found = 0;
   for (int index = 0; index < 25; ++index)
   {

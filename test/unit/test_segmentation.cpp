@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "brick_pose/catalogue/brick_catalogue.h"
+#include "brick_pose/common/errors.h"
 #include "brick_pose/segmentation/hsv_segmenter.h"
 #include "brick_pose/segmentation/region_growing_segmenter.h"
 #include "synthetic_plate_scene.h"
@@ -207,6 +208,30 @@ TEST(RegionGrowingSegmenter, FindsThePlanarPatchWithoutColour)
     best_iou = std::max(best_iou, intersectionOverUnion(segment, truth));
   }
   EXPECT_GT(best_iou, 0.95);
+}
+
+TEST(RegionGrowingSegmenter, ABlockSpansOneAngleAtEveryResolutionAndABadFocalLengthCannotMultiplyThem)
+{
+  const RegionGrowingSegmenter segmenter;
+  // The D415's colour modes (920 px at 1280x720, 613 px at 848x480 and
+  // 640x480) and a Kinect's VGA (525 px).
+  EXPECT_EQ(segmenter.strideFor(920.0, 1280, 720), 6);
+  EXPECT_EQ(segmenter.strideFor(613.3, 848, 480), 4);
+  EXPECT_EQ(segmenter.strideFor(613.3, 640, 480), 4);
+  EXPECT_EQ(segmenter.strideFor(525.0, 640, 480), 3);
+  // A focal length of 1 px, none, or not a number: no more blocks than
+  // region growing can take.
+  for (const double fx_px : {1.0, 0.0, -50.0, std::nan("")})
+  {
+    const int stride_px = segmenter.strideFor(fx_px, 1280, 720);
+    EXPECT_GE(stride_px, 1);
+    EXPECT_LE((1280.0 / stride_px) * (720.0 / stride_px), RegionGrowingSegmenter::kMaxBlocks) << fx_px;
+  }
+  RegionGrowingParams coarse;
+  coarse.block_angle_mrad = 9.8;  // the 6 px blocks of before, at 613 px
+  EXPECT_EQ(RegionGrowingSegmenter(coarse).strideFor(613.3, 640, 480), 6);
+  coarse.block_angle_mrad = 0.0;
+  EXPECT_THROW(RegionGrowingSegmenter{coarse}, ConfigError);
 }
 }  // namespace
 }  // namespace brick_pose

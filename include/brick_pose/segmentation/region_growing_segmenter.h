@@ -48,8 +48,13 @@ class RegionGrowingSegmenter
 public:
   explicit RegionGrowingSegmenter(const RegionGrowingParams& params = RegionGrowingParams());
 
-  /// The block size (pixels, at least 1) for a camera of focal length `fx_px`.
-  int strideFor(double fx_px) const;
+  /// The block size (pixels) for a camera of focal length `fx_px`: the
+  /// block angle's, but never so small that a `width_px` x `height_px`
+  /// frame makes more than kMaxBlocks blocks (1280x720 in 6 px blocks
+  /// makes 25600, 640x480 in 3 px blocks 34133).
+  int strideFor(double fx_px, int width_px, int height_px) const;
+
+  static constexpr double kMaxBlocks = 40000.0;
 
   /// Planar segments of the frame, largest first; type_name is empty.
   std::vector<Segment> segment(const RgbdFrame& frame) const;

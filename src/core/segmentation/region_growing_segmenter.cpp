@@ -125,10 +125,14 @@ void RegionGrowingParams::validate() const
 
 RegionGrowingSegmenter::RegionGrowingSegmenter(const RegionGrowingParams& params) : params_(params) { params_.validate(); }
 
-int RegionGrowingSegmenter::strideFor(double fx_px) const
+int RegionGrowingSegmenter::strideFor(double fx_px, int width_px, int height_px) const
 {
   const double stride_px = 1e-3 * params_.block_angle_mrad * fx_px;
-  return std::isfinite(stride_px) ? std::max(1, roundToInt(stride_px)) : 1;
+  // A focal length far too short for the image (a bad camera_info) must
+  // not thin a frame into more blocks than region growing can take.
+  const double pixels = static_cast<double>(std::max(0, width_px)) * std::max(0, height_px);
+  const int fewest_px = static_cast<int>(std::ceil(std::sqrt(pixels / kMaxBlocks)));
+  return std::max({1, fewest_px, std::isfinite(stride_px) ? roundToInt(stride_px) : 1});
 }
 
 std::vector<Segment> RegionGrowingSegmenter::segment(const RgbdFrame& frame) const
@@ -137,7 +141,7 @@ std::vector<Segment> RegionGrowingSegmenter::segment(const RgbdFrame& frame) con
   // Block medians rather than every stride-th pixel: sunlight leaves so many
   // dropouts that the integral-image normals of a strided cloud vanish.
   const pcl::PointCloud<pcl::PointXYZ>::Ptr strided =
-      makeBlockMedianCloud(frame, strideFor(frame.camera.fx_px), source_pixels);
+      makeBlockMedianCloud(frame, strideFor(frame.camera.fx_px, frame.width_px(), frame.height_px()), source_pixels);
   // PCL's integral-image normals read outside a cloud smaller than their
   // window (and then leave no normals); such a frame holds no plate anyway.
   const auto min_side = static_cast<std::uint32_t>(2.0 * std::ceil(params_.normal_smoothing_size) + 2.0);
