@@ -259,6 +259,12 @@ private:
   /// The face's StandingHeight when it can tell types apart: a support is
   /// given, height_above_support_tolerance_m is on, and one of `shown` (the
   /// tops the face shows) could stand there; otherwise none.
+  /// Whether a face's height above a given support can say what stands
+  /// there: a support given, and height_above_support_tolerance_m on.
+  bool heightTellsTypes(const FrameContext& context) const
+  {
+    return params_.height_above_support_tolerance_m > 0.0 && context.up.support_given;
+  }
   std::optional<StandingHeight> standingHeight(const RgbdFrame& frame, const FrameContext& context,
                                                const BrickCandidate& candidate,
                                                const std::vector<const BrickType*>& shown) const;
@@ -347,11 +353,6 @@ private:
     /// kTypeMarginM of the least standingMisfitM) share one top.
     bool one_top_size = false;
   };
-  /// Those of `types` whose top could be at `face`'s height above the
-  /// given support, on their bottom, a side or an end (typesStandingAt,
-  /// levels around its foot included), most exactly: within kTypeMarginM
-  /// of the least standingMisfitM. `types` (one_top_size false) when no
-  /// support is given or none could stand there.
   /// A line placed as one tile's end (kSizePlacedLine) is where the tile
   /// across it begins: that tile's colour line there becomes one, and it is
   /// judged again (judgeCompleteness, doubtComposedTop), so that its own
@@ -368,6 +369,11 @@ private:
   std::optional<std::vector<const BrickType*>> posesStandingMostExactly(
       const RgbdFrame& frame, const FrameContext& context, const BrickCandidate& face,
       const std::vector<const BrickType*>& shown) const;
+  /// Those of `types` whose top could be at `face`'s height above the
+  /// given support, on their bottom, a side or an end (typesStandingAt,
+  /// levels around its foot included), most exactly: within kTypeMarginM
+  /// of the least standingMisfitM. `types` (one_top_size false) when no
+  /// support is given or none could stand there.
   TypesAtHeight typesStandingWhereTheFaceIs(const RgbdFrame& frame, const FrameContext& context,
                                             const BrickCandidate& face,
                                             const std::vector<const BrickType*>& types) const;

@@ -337,8 +337,8 @@ std::optional<std::vector<const BrickType*>> RoiFilter::posesStandingMostExactly
     const RgbdFrame& frame, const FrameContext& context, const BrickCandidate& face,
     const std::vector<const BrickType*>& shown) const
 {
+  if (!heightTellsTypes(context)) return std::nullopt;
   const double tolerance_m = params_.height_above_support_tolerance_m;
-  if (!(tolerance_m > 0.0) || !context.up.support_given) return std::nullopt;
   const double height_m = context.up.heightAboveSupport(face.centroid_m);
   std::vector<const BrickType*> standing = typesStandingAt(shown, height_m, {}, stack_heights_, tolerance_m);
   if (standing.empty()) return std::nullopt;
@@ -371,6 +371,7 @@ RoiFilter::TypesAtHeight RoiFilter::typesStandingWhereTheFaceIs(const RgbdFrame&
   // box_large (0.25 m tall) has its top there, on its bottom, a side or an
   // end. Without a support, or where none of the types could stand (a
   // plinth under the pile), all stay.
+  if (!heightTellsTypes(context)) return {types, false};
   const TypePoses poses = posesOf(types);
   const std::optional<std::vector<const BrickType*>> exact =
       posesStandingMostExactly(frame, context, face, poses.pointers());

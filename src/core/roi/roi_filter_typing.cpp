@@ -215,7 +215,7 @@ std::optional<std::string> RoiFilter::heightRulesOutType(const RgbdFrame& frame,
 {
   const BrickType* own = catalogue_.find(candidate.type_name);
   const double tolerance_m = params_.height_above_support_tolerance_m;
-  if (!own || !(tolerance_m > 0.0) || !context.up.support_given) return std::nullopt;
+  if (!own || !heightTellsTypes(context)) return std::nullopt;
   const double height_m = context.up.heightAboveSupport(candidate.centroid_m);
   // Most faces stand where their type does: that needs no levels read.
   if (!typesStandingAt({own}, height_m, {}, stack_heights_, tolerance_m).empty()) return std::nullopt;
@@ -376,8 +376,8 @@ std::optional<RoiFilter::StandingHeight> RoiFilter::standingHeight(const RgbdFra
                                                                    const BrickCandidate& candidate,
                                                                    const std::vector<const BrickType*>& shown) const
 {
+  if (!heightTellsTypes(context)) return std::nullopt;
   const double tolerance_m = params_.height_above_support_tolerance_m;
-  if (!(tolerance_m > 0.0) || !context.up.support_given) return std::nullopt;
   const double height_m = context.up.heightAboveSupport(candidate.centroid_m);
   // None of the tops it shows could stand there: the face stands on
   // something else (a plinth, the given plane is the floor under a
@@ -392,6 +392,7 @@ std::optional<RoiFilter::StandingHeight> RoiFilter::standingHeight(const RgbdFra
 std::vector<double> RoiFilter::extentsStandingThere(const RgbdFrame& frame, const FrameContext& context,
                                                    const BrickCandidate& face) const
 {
+  if (!heightTellsTypes(context)) return catalogue_extents_m_;
   std::vector<const BrickType*> shown = typesFor(catalogue_, "");
   for (const BrickType& pose : lying_variants_) shown.push_back(&pose);
   const std::optional<std::vector<const BrickType*>> poses = posesStandingMostExactly(frame, context, face, shown);
