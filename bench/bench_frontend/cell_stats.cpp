@@ -13,6 +13,9 @@ namespace
 /// A missed top that a candidate lies on without being it: the candidate's
 /// own line ("not a top found") says what it is.
 constexpr const char* kUnderACandidate = "a candidate lies on it but is not it (see its line)";
+/// A missed top found with a wrong type that names its own among the other
+/// types it may be: a rejection lying over it is not why it was missed.
+constexpr const char* kTypeLeftOpen = "found, its type left open (see its candidate's line)";
 
 /// Legacy tops >= this visible give dimension and corner errors.
 constexpr double kMeasuredMinVisibleFraction = 0.95;
@@ -23,9 +26,12 @@ void append(std::vector<double>& to, const std::vector<double>& from) { to.inser
 /// number, as the earlier benchmark named misses): of those whose box holds
 /// a third of the top, the one whose box is most of that top (the tile cut
 /// from a split segment, not the whole segment or a neighbour's part).
-std::string missReason(const FrontEndResult& result, const eval::SceneTruth& truth, int face, bool whole,
+/// A top found with its type left open is named so.
+std::string missReason(const FrontEndResult& result, const eval::SceneTruth& truth, const eval::TopMatch& match,
                        bool verbose, const std::string& frame_name)
 {
+  const int face = match.face;
+  const bool whole = match.whole_in_view;
   const eval::FaceTruth& top = truth.faces[static_cast<std::size_t>(face)];
   // How much of the top a box holds (sampled every other pixel), and
   // whether that is a third of the top.
@@ -52,9 +58,10 @@ std::string missReason(const FrontEndResult& result, const eval::SceneTruth& tru
       return holds(c.bounding_box_px, share);
     });
   };
-  const std::string reason = named              ? named->reason
-                             : underACandidate() ? kUnderACandidate
-                                                 : "no segment";
+  const std::string reason = match.found_type_left_open ? kTypeLeftOpen
+                             : named                    ? named->reason
+                             : underACandidate()        ? kUnderACandidate
+                                                        : "no segment";
   if (verbose)
     std::fprintf(stderr, "%s: miss %s%s vis %.2f: %s\n", frame_name.c_str(), whole ? "whole " : "", top.type.c_str(),
                  top.visible_fraction, reason.c_str());
@@ -152,12 +159,24 @@ void recordFrame(const FrontEndResult& result, double cpu_ms, const eval::SceneT
   for (const eval::TopMatch& top : match.tops)
   {
     if (top.visible_fraction >= match_params.legacy_min_visible_fraction && !top.legacy_found)
-      ++stats.miss_reasons[missReason(result, truth, top.face, top.whole_in_view, verbose, frame_name)];
-    // A whole top a legacy true positive lies on without holding enough of it.
+      ++stats.miss_reasons[missReason(result, truth, top, verbose, frame_name)];
+    // A whole top a legacy true positive lies on without holding enough of
+    // it (a tile over two bricks, half of one): what lies on it is named,
+    // as no other line names a legacy true positive.
     else if (verbose && top.whole_in_view && !top.found)
+    {
       std::fprintf(stderr, "%s: miss whole %s vis %.2f: %s\n", frame_name.c_str(),
                    truth.faces[static_cast<std::size_t>(top.face)].type.c_str(), top.visible_fraction,
                    kUnderACandidate);
+      for (std::size_t c = 0; c < match.candidates.size(); ++c)
+        if (match.candidates[c].face == top.face)
+          std::fprintf(stderr, "  on it: %s %.3f x %.3f m: %s (share %.2f, coverage %.2f)%s%s\n",
+                       result.candidates[c].type_name.c_str(), result.candidates[c].length_m,
+                       result.candidates[c].width_m, eval::toString(match.candidates[c].outcome),
+                       match.candidates[c].face_share, match.candidates[c].coverage,
+                       result.candidates[c].partial_reason.empty() ? "" : "; partial: ",
+                       result.candidates[c].partial_reason.c_str());
+    }
   }
 }
 }  // namespace frontend_bench
