@@ -107,6 +107,7 @@ void CellStats::merge(const CellStats& other)
   append(quad_dim_error_mm, other.quad_dim_error_mm);
   append(obb_dim_error_mm, other.obb_dim_error_mm);
   append(corner_error_px, other.corner_error_px);
+  append(complete_centre_mm, other.complete_centre_mm);
   for (const auto& [reason, count] : other.miss_reasons) miss_reasons[reason] += count;
   for (const auto& [reason, count] : other.false_positive_reasons) false_positive_reasons[reason] += count;
 }
@@ -152,6 +153,9 @@ void recordFrame(const FrontEndResult& result, double cpu_ms, const eval::SceneT
       ++stats.false_positive_reasons[reason];
       continue;
     }
+    if (candidate.complete && candidate_match.outcome == eval::CandidateOutcome::kWholeTop &&
+        candidate_match.has_errors)
+      stats.complete_centre_mm.push_back(candidate_match.errors.centre_mm);
     const eval::FaceTruth& face = truth.faces[static_cast<std::size_t>(candidate_match.face)];
     if (face.has_geometry && face.visible_fraction >= kMeasuredMinVisibleFraction)
       recordLegacyErrors(candidate, face, camera, stats);

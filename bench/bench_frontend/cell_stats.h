@@ -27,6 +27,9 @@ struct CellStats
   // least 95% visible: |quad length/width - truth|, |OBB extents - truth|,
   // and each quad corner's distance to the projected truth corner.
   std::vector<double> quad_dim_error_mm, obb_dim_error_mm, corner_error_px;
+  /// Centre errors (mm) of the complete candidates on whole tops of their
+  /// type: the faces a planner picks, placed at their catalogue size.
+  std::vector<double> complete_centre_mm;
   std::map<std::string, int> miss_reasons;            ///< Legacy tops (>= 60% visible) not found.
   std::map<std::string, int> false_positive_reasons;  ///< Candidates that are not legacy true positives.
 

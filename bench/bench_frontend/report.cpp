@@ -175,6 +175,27 @@ void printLegacyBlock(const RunInfo& run, const RigResults& rig)
     if (run.modes[m].mode) printLegacyMode(run.modes[m].name, mergedCells(rig.legacy_cells, kAny, m, r));
 }
 
+/// The centres of the complete faces alone (the table's centre column
+/// holds every whole top found, partial ones too): what a planner picks.
+void printCompleteCentres(const RunInfo& run, const RigResults& rig)
+{
+  std::printf("\nCentres of the complete faces (whole tops of their type), mm\n\n");
+  std::printf("| scene class | mode | resolution | complete faces | centre mm median / p95 |\n|---|---|---|---|---|\n");
+  for (std::size_t c = 0; c < run.classes.size(); ++c)
+    for (std::size_t m = 0; m < run.modes.size(); ++m)
+    {
+      if (!run.classes[c].kind || !run.modes[m].mode) continue;
+      for (std::size_t r = 0; r < run.resolutions.size(); ++r)
+      {
+        const CellStats stats = mergedCells(rig.cells, c, m, r);
+        if (stats.complete_centre_mm.empty()) continue;
+        std::printf("| %s | %s | %s | %zu | %s |\n", run.classes[c].label.c_str(), run.modes[m].name.c_str(),
+                    run.resolutions[r].label.c_str(), stats.complete_centre_mm.size(),
+                    medianP95(stats.complete_centre_mm, "%.1f").c_str());
+      }
+    }
+}
+
 void printTables(const RunInfo& run, const RigResults& rig, const MosdResults& mosd)
 {
   std::printf("\n== Front end per scene class x mode x resolution (issue 10)\n\n");
@@ -218,6 +239,7 @@ void printTables(const RunInfo& run, const RigResults& rig, const MosdResults& m
     }
 
   printStageTimes(run, rig);
+  printCompleteCentres(run, rig);
 
   std::printf("\nNot measured yet:");
   bool any = false;

@@ -248,6 +248,39 @@ TEST(FrontEnd, ColourFreeModeWorksWithACatalogueWithoutPlateColours)
   EXPECT_NEAR(result.candidates[0].width_m, 0.3, 0.01);
 }
 
+// A colour-free face measured longer than its type, complete: its corners
+// and centre are placed at the catalogue size, its measured size stays.
+// (Here every edge is a step down, so the excess comes off both ends alike
+// and the centre stays: see test_catalogue_size_placement for one-sided
+// excess, and bench_frontend for what it does on D4xx depth.)
+TEST(FrontEnd, ACompleteColourFreeFaceIsPlacedAtItsCatalogueSize)
+{
+  test::PlateScene scene = plainBoxScene();
+  scene.length_m = 0.415;
+  RgbdFrame frame = scene.frame();
+  const Eigen::Vector3d normal = scene.rotation.col(2);
+  frame.up_in_camera = normal.z() < 0.0 ? normal : Eigen::Vector3d(-normal);
+  FrontEndParams params;
+  params.mode = SegmentationMode::kColourFree;
+  const auto candidateWith = [&](bool place) {
+    params.roi.place_on_catalogue_size = place;
+    const FrontEndResult result = FrontEnd(bricksAndBox(false), params).process(frame);
+    EXPECT_EQ(result.candidates.size(), 1u);
+    return result.candidates.empty() ? BrickCandidate() : result.candidates.front();
+  };
+  const BrickCandidate placed = candidateWith(true), measured = candidateWith(false);
+  ASSERT_TRUE(placed.complete) << placed.partial_reason;
+  const auto cornerSpan = [](const BrickCandidate& c) {
+    return 0.5 * ((c.corners_m[1] - c.corners_m[0]).norm() + (c.corners_m[2] - c.corners_m[3]).norm());
+  };
+  EXPECT_NEAR(cornerSpan(measured), 0.415, 0.006);
+  EXPECT_NEAR(cornerSpan(placed), 0.4, 0.002);
+  EXPECT_DOUBLE_EQ(placed.length_m, measured.length_m);
+  EXPECT_DOUBLE_EQ(placed.width_m, measured.width_m);
+  EXPECT_NEAR((placed.centroid_m - measured.centroid_m).norm(), 0.0, 1e-3);
+  EXPECT_NEAR((0.5 * (placed.t1_m + placed.t2_m) - placed.centroid_m).norm(), 0.0, 1e-9);
+}
+
 TEST(FrontEnd, HsvModeSegmentsTypesWithoutAPlateColourWithoutColour)
 {
   const FrontEnd front_end(bricksAndBox(true));  // mode hsv

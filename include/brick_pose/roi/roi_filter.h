@@ -59,6 +59,12 @@ struct RoiFilterParams
   /// sides holds, and fill the quad inside the rim but for specks: how deep
   /// a sensor's ragged depth boundary may eat into a face (see inset_fill.h).
   double ragged_outline_px = 2.0;
+  /// A complete colour-free face (its type known) is placed at its
+  /// catalogue size: the excess of its measured size is taken off the edges
+  /// its depth bounds, which D4xx depth carries a few pixels too far (see
+  /// catalogue_size_placement.h). Its centre, corners and T1/T2 move; its
+  /// measured length and width stay.
+  bool place_on_catalogue_size = true;
   /// "Up" (unit, camera frame, e.g. from tf through the nodelet's
   /// up_frame). When zero, the front end estimates it per frame (see
   /// up_direction.h). Faces whose normal is more than max_tilt_deg from up
@@ -190,6 +196,12 @@ public:
   const RoiFilterParams& params() const { return params_; }
 
 private:
+  /// filterSplitting() before complete faces are placed at their catalogue size.
+  RoiOutcome filterSplittingAsMeasured(const RgbdFrame& frame, const Segment& segment, const FrameContext& context,
+                                       CloudProcessingTimings* cloud_timings) const;
+  /// place_on_catalogue_size for one candidate (complete and colour-free
+  /// only; others are left as they are).
+  void placeOnCatalogueSize(const PinholeCamera& camera, BrickCandidate& candidate) const;
   /// Points, plane, OBB and outline geometry; the reason when it fails.
   /// `edges` (optional) replaces params_.edges in reading its edges: a
   /// tile's, read as its tiling read the seams (see seamReadingFor).

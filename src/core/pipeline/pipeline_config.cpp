@@ -89,6 +89,7 @@ ParamBindings frontEndBindings(FrontEndParams& params)
           {"dimension_tolerance_m", &roi.dimensions.tolerance_m},
           {"max_plane_rms_m", &roi.max_plane_rms_m},
           {"ragged_outline_px", &roi.ragged_outline_px},
+          {"place_on_catalogue_size", &roi.place_on_catalogue_size},
           // The top-face check and the splitting of touching bricks (issue 10).
           {"max_tilt_deg", &roi.max_tilt_deg},
           {"edge_min_step_m", &roi.edges.min_step_m},

@@ -17,6 +17,7 @@
 #include "brick_pose/common/errors.h"
 #include "brick_pose/common/rounding.h"
 #include "brick_pose/frame/organized_cloud.h"
+#include "brick_pose/roi/catalogue_size_placement.h"
 #include "brick_pose/roi/inset_fill.h"
 #include "brick_pose/roi/plate_splitter.h"
 #include "brick_pose/roi/size_placed_edge.h"
@@ -353,6 +354,7 @@ RoiResult RoiFilter::filter(const RgbdFrame& frame, const Segment& segment, cons
   if (auto reason = measure(frame, segment, context, cloud_timings, candidate)) return *reason;
   if (auto reason = assignType(frame, context, segment, candidate)) return *reason;
   judgeCompleteness(frame, context, !segment.type_name.empty(), candidate);
+  placeOnCatalogueSize(frame.camera, candidate);
   return candidate;
 }
 
@@ -364,6 +366,32 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
 
 RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& segment, const FrameContext& context,
                                       CloudProcessingTimings* cloud_timings) const
+{
+  RoiOutcome outcome = filterSplittingAsMeasured(frame, segment, context, cloud_timings);
+  for (BrickCandidate& candidate : outcome.candidates) placeOnCatalogueSize(frame.camera, candidate);
+  return outcome;
+}
+
+void RoiFilter::placeOnCatalogueSize(const PinholeCamera& camera, BrickCandidate& candidate) const
+{
+  // A colour segment ends where its colour does, not where depth does.
+  if (!params_.place_on_catalogue_size || !candidate.complete || candidate.typed_by_colour) return;
+  const BrickType* type = catalogue_.find(candidate.type_name);
+  if (!type) return;
+  const std::array<Eigen::Vector3d, 4> corners_m =
+      cornersTrimmedToSize(candidate.corners_m, candidate.edge_kinds, type->length_m, type->width_m,
+                           params_.dimensions.tolerance_m);
+  QuadCorners corners_px;
+  for (int k = 0; k < 4; ++k) corners_px[k] = camera.project(corners_m[k]);
+  const double measured_length_m = candidate.length_m, measured_width_m = candidate.width_m;
+  placeCorners(camera, corners_px, corners_m, candidate);
+  candidate.length_m = measured_length_m;
+  candidate.width_m = measured_width_m;
+}
+
+RoiOutcome RoiFilter::filterSplittingAsMeasured(const RgbdFrame& frame, const Segment& segment,
+                                                const FrameContext& context,
+                                                CloudProcessingTimings* cloud_timings) const
 {
   RoiOutcome outcome;
   BrickCandidate candidate;
