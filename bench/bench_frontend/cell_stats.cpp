@@ -68,6 +68,25 @@ std::string missReason(const FrontEndResult& result, const eval::SceneTruth& tru
   return reason.substr(0, reason.find_first_of("0123456789"));
 }
 
+/// How far each edge of `candidate` (its midpoint) lies outside the
+/// truth's edge it stands for (m, negative inside): edges 0 and 2 are the
+/// long ones, a width apart; 1 and 3 a length.
+std::array<double, 4> edgeOffsetsM(const BrickCandidate& candidate, const eval::TopFaceGeometry& truth)
+{
+  const Eigen::Vector3d normal = truth.normal.normalized();
+  const Eigen::Vector3d along = (truth.long_axis - truth.long_axis.dot(normal) * normal).normalized();
+  const Eigen::Vector3d across = normal.cross(along);
+  std::array<double, 4> offsets_m{};
+  for (int k = 0; k < 4; ++k)
+  {
+    const Eigen::Vector3d middle =
+        0.5 * (candidate.corners_m[k] + candidate.corners_m[(k + 1) % 4]) - truth.centre_m;
+    offsets_m[k] = k % 2 == 0 ? std::abs(middle.dot(across)) - 0.5 * truth.width_m
+                              : std::abs(middle.dot(along)) - 0.5 * truth.length_m;
+  }
+  return offsets_m;
+}
+
 /// Why a candidate is not one of the earlier benchmark's true positives
 /// (its names: "wrong type (X for Y)", "second candidate on a top").
 std::string falsePositiveReason(const BrickCandidate& candidate, const eval::CandidateMatch& match,
@@ -108,6 +127,7 @@ void CellStats::merge(const CellStats& other)
   append(obb_dim_error_mm, other.obb_dim_error_mm);
   append(corner_error_px, other.corner_error_px);
   append(complete_centre_mm, other.complete_centre_mm);
+  for (const auto& [kind, offsets] : other.complete_edge_offset_mm) append(complete_edge_offset_mm[kind], offsets);
   for (const auto& [reason, count] : other.miss_reasons) miss_reasons[reason] += count;
   for (const auto& [reason, count] : other.false_positive_reasons) false_positive_reasons[reason] += count;
 }
@@ -153,10 +173,15 @@ void recordFrame(const FrontEndResult& result, double cpu_ms, const eval::SceneT
       ++stats.false_positive_reasons[reason];
       continue;
     }
+    const eval::FaceTruth& face = truth.faces[static_cast<std::size_t>(candidate_match.face)];
     if (candidate.complete && candidate_match.outcome == eval::CandidateOutcome::kWholeTop &&
         candidate_match.has_errors)
+    {
       stats.complete_centre_mm.push_back(candidate_match.errors.centre_mm);
-    const eval::FaceTruth& face = truth.faces[static_cast<std::size_t>(candidate_match.face)];
+      const std::array<double, 4> offsets_m = edgeOffsetsM(candidate, face.geometry);
+      for (int k = 0; k < 4; ++k)
+        stats.complete_edge_offset_mm[toString(candidate.edge_kinds[k])].push_back(1000.0 * offsets_m[k]);
+    }
     if (face.has_geometry && face.visible_fraction >= kMeasuredMinVisibleFraction)
       recordLegacyErrors(candidate, face, camera, stats);
   }

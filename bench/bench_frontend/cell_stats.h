@@ -30,6 +30,10 @@ struct CellStats
   /// Centre errors (mm) of the complete candidates on whole tops of their
   /// type: the faces a planner picks, placed at their catalogue size.
   std::vector<double> complete_centre_mm;
+  /// How far (mm, + outward) each edge of those faces lies from the truth's
+  /// edge, by what the edge was read as (EdgeKind's name): where the
+  /// sensor's depth runs past the face.
+  std::map<std::string, std::vector<double>> complete_edge_offset_mm;
   std::map<std::string, int> miss_reasons;            ///< Legacy tops (>= 60% visible) not found.
   std::map<std::string, int> false_positive_reasons;  ///< Candidates that are not legacy true positives.
 

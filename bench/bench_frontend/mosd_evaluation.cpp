@@ -78,8 +78,11 @@ MosdResults runMosd(const std::vector<ModeSpec>& modes, const Options& options)
       {
         // With up given, the table is given too, as a robot's tf would
         // give the plane the boxes stand on (support_frame).
-        const FrontEnd front_end(catalogue, with_up ? frontEndParamsFor(modes[m], truths[s].up, tablePlane(truths[s]))
-                                                    : frontEndParamsFor(modes[m], Eigen::Vector3d::Zero()));
+        const FrontEnd front_end(catalogue, with_up ? frontEndParamsFor(modes[m], truths[s].up, tablePlane(truths[s]),
+                                                                      options.measured_corners)
+                                                    : frontEndParamsFor(modes[m], Eigen::Vector3d::Zero(),
+                                                                      Eigen::Vector4d::Zero(),
+                                                                      options.measured_corners));
         const double cpu_start = bench::processCpuMs();
         const FrontEndResult result = front_end.process(scenes[s].frame);
         const double cpu_ms = bench::processCpuMs() - cpu_start;

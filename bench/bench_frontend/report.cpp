@@ -196,6 +196,46 @@ void printCompleteCentres(const RunInfo& run, const RigResults& rig)
     }
 }
 
+/// Where the complete colour-free faces' edges lie against the truth's, by
+/// what each was read as: depth-bounded edges run past the face on D4xx
+/// depth, colour-placed ones do not (catalogue_size_placement.h). Measured
+/// after the placement unless --measured-corners.
+void printCompleteEdgeOffsets(const RunInfo& run, const RigResults& rig)
+{
+  const std::vector<std::pair<std::string, std::vector<EdgeKind>>> groups = {
+      {"step down", {EdgeKind::kStepDown}},
+      {"crease", {EdgeKind::kCrease}},
+      {"line, seam, size-placed line, wall foot",
+       {EdgeKind::kColourLine, EdgeKind::kSeam, EdgeKind::kSizePlacedLine, EdgeKind::kStepUp}}};
+  std::printf("\nEdges of the complete colour-free faces against the truth's, mm outward, median (count)%s\n\n",
+              run.options.measured_corners ? ", as measured" : ", after place_on_catalogue_size");
+  std::printf("| scene class | mode | resolution | step down | crease | line, seam, size-placed line, wall foot |\n"
+              "|---|---|---|---|---|---|\n");
+  for (std::size_t c = 0; c < run.classes.size(); ++c)
+    for (std::size_t m = 0; m < run.modes.size(); ++m)
+    {
+      if (!run.classes[c].kind || !run.modes[m].mode || !run.modes[m].colour_free) continue;
+      for (std::size_t r = 0; r < run.resolutions.size(); ++r)
+      {
+        const CellStats stats = mergedCells(rig.cells, c, m, r);
+        if (stats.complete_edge_offset_mm.empty()) continue;
+        std::printf("| %s | %s | %s", run.classes[c].label.c_str(), run.modes[m].name.c_str(),
+                    run.resolutions[r].label.c_str());
+        for (const auto& [name, kinds] : groups)
+        {
+          std::vector<double> offsets;
+          for (const EdgeKind kind : kinds)
+            if (const auto found = stats.complete_edge_offset_mm.find(toString(kind));
+                found != stats.complete_edge_offset_mm.end())
+              offsets.insert(offsets.end(), found->second.begin(), found->second.end());
+          std::printf(" | %s", offsets.empty() ? "-" : (formatted("%.1f", percentile(offsets, 0.5)) + " (" +
+                                                        std::to_string(offsets.size()) + ")").c_str());
+        }
+        std::printf(" |\n");
+      }
+    }
+}
+
 void printTables(const RunInfo& run, const RigResults& rig, const MosdResults& mosd)
 {
   std::printf("\n== Front end per scene class x mode x resolution (issue 10)\n\n");
@@ -240,6 +280,7 @@ void printTables(const RunInfo& run, const RigResults& rig, const MosdResults& m
 
   printStageTimes(run, rig);
   printCompleteCentres(run, rig);
+  printCompleteEdgeOffsets(run, rig);
 
   std::printf("\nNot measured yet:");
   bool any = false;

@@ -107,7 +107,9 @@ RigResults runRig(const std::vector<BrickCatalogue>& catalogues, const std::vect
         if (m == 0 && resolutions[r].legacy) results.frame_build_ms.push_back(millisecondsSince(build_start));
         // A front end per frame: the up direction is the frame's. Building
         // one is cheap next to processing a frame.
-        const FrontEnd front_end(catalogues[spec.scene_class], frontEndParamsFor(modes[m], rendered.up_in_camera, rendered.ground_in_camera));
+        const FrontEnd front_end(catalogues[spec.scene_class], frontEndParamsFor(modes[m], rendered.up_in_camera,
+                                                                                   rendered.ground_in_camera,
+                                                                                   options.measured_corners));
         const double cpu_start = bench::processCpuMs();
         const FrontEndResult result = front_end.process(frame);
         const double cpu_ms = bench::processCpuMs() - cpu_start;

@@ -71,6 +71,7 @@ Options parseOptions(int argc, char** argv)
     else if (arg == "--no-mosd") options.skip_mosd = true;
     else if (arg == "--no-rig") options.skip_rig = true;
     else if (arg == "--verbose") options.verbose = true;
+    else if (arg == "--measured-corners") options.measured_corners = true;
     else if (arg == "--overlay-dir" && has_value) options.overlay_dir = argv[++i];
     else if (arg == "--only" && i + 3 < argc)
     {
@@ -82,7 +83,7 @@ Options parseOptions(int argc, char** argv)
     {
       std::cerr << "usage: bench_frontend [--frames N] [--seed S] [--mosd DIR] [--mosd-catalogue FILE] [--box-catalogue FILE] "
                    "[--no-mosd] "
-                   "[--no-rig] [--verbose] [--overlay-dir DIR] [--only KINDS MODES RESOLUTIONS]\n";
+                   "[--no-rig] [--verbose] [--measured-corners] [--overlay-dir DIR] [--only KINDS MODES RESOLUTIONS]\n";
       std::exit(arg == "--help" || arg == "-h" ? 0 : 2);
     }
   }
@@ -140,10 +141,11 @@ const ModeSpec* headlineColourFreeMode(const std::vector<ModeSpec>& modes)
 }
 
 FrontEndParams frontEndParamsFor(const ModeSpec& mode, const Eigen::Vector3d& up_in_camera,
-                                 const Eigen::Vector4d& support_plane)
+                                 const Eigen::Vector4d& support_plane, bool measured_corners)
 {
   FrontEndParams params;
   params.mode = *mode.mode;
+  params.roi.place_on_catalogue_size = !measured_corners;
   if (mode.colour_free) params.roi.up_direction = up_in_camera;
   if (mode.colour_free) params.roi.support_plane = support_plane;
   return params;

@@ -36,6 +36,9 @@ struct Options
   bool skip_mosd = false;
   bool skip_rig = false;       ///< Only the real-scene rows (quick look at mOSD).
   bool verbose = false;      ///< Each false positive, false complete and miss on stderr.
+  /// Complete faces keep the corners they were measured with
+  /// (RoiFilterParams::place_on_catalogue_size off), to compare.
+  bool measured_corners = false;
   /// Non-empty: writes <scene>_<mode>.png match overlays of the mOSD rows
   /// there, and with --only one per rig frame run.
   std::string overlay_dir;
@@ -109,9 +112,10 @@ const ModeSpec* headlineColourFreeMode(const std::vector<ModeSpec>& modes);
 /// faces have the size of a top face; zero leaves it unset) and, when
 /// known, the plane the pile stands on (`support_plane`, as the nodelet's
 /// support_frame gives it; zero leaves it unset); hsv runs with its
-/// defaults, as the earlier benchmark did.
+/// defaults, as the earlier benchmark did. `measured_corners`: see Options.
 FrontEndParams frontEndParamsFor(const ModeSpec& mode, const Eigen::Vector3d& up_in_camera,
-                                 const Eigen::Vector4d& support_plane = Eigen::Vector4d::Zero());
+                                 const Eigen::Vector4d& support_plane = Eigen::Vector4d::Zero(),
+                                 bool measured_corners = false);
 
 /// One frame of the run: which class, its seed and lighting.
 struct FrameSpec
