@@ -1,5 +1,7 @@
 // A complete colour-free face placed at its catalogue size: the excess of
 // its measured size comes off the edges its depth bounds.
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include "brick_pose/roi/catalogue_size_placement.h"
@@ -58,6 +60,37 @@ TEST(CatalogueSizePlacement, EndsBoundAlikeShareTheExcessAndKeepTheCentre)
     EXPECT_NEAR(placed[3].y() - placed[0].y(), kWidthM, 1e-9) << toString(kind);
     EXPECT_NEAR(centreOf(placed).norm(), 1.5, 1e-9) << toString(kind);
   }
+}
+
+TEST(CatalogueSizePlacement, BothEndsBoundByDepthShareTheExcessByWhereColourShowsThem)
+{
+  constexpr double kNotSeen = std::numeric_limits<double>::quiet_NaN();
+  constexpr double kAgreementM = 0.002;
+  const EdgeKinds steps = kinds(EdgeKind::kStepDown, EdgeKind::kStepDown, EdgeKind::kStepDown, EdgeKind::kCrease);
+  const auto centreX = [&](double inset_1_m, double inset_3_m) {
+    return centreOf(cornersTrimmedToSize(face(kLengthM + 0.02, kWidthM), steps, kLengthM, kWidthM, kTrimLimitM,
+                                         {{kNotSeen, inset_1_m, kNotSeen, inset_3_m}}, kAgreementM))
+        .x();
+  };
+  // Colour shows edge 1 (+x) 15 mm in and edge 3 6 mm in, together the 2 cm
+  // excess within 2 mm: it comes off in that proportion.
+  EXPECT_NEAR(centreX(0.015, 0.006), -0.5 * (0.02 * 15.0 / 21.0 - 0.02 * 6.0 / 21.0), 1e-9);
+  // Ends that disagree with the excess (15 mm and 0: print by an edge?) are
+  // not trusted: half each.
+  EXPECT_NEAR(centreX(0.015, 0.0), 0.0, 1e-9);
+  // Only edge 1 seen, 12 mm in: that much off it, the other 8 mm off edge 3.
+  EXPECT_NEAR(centreX(0.012, kNotSeen), -0.002, 1e-9);
+  // One end seen farther in than the excess is not trusted either.
+  EXPECT_NEAR(centreX(kNotSeen, 0.03), 0.0, 1e-9);
+  // Neither seen: half each.
+  EXPECT_NEAR(centreX(kNotSeen, kNotSeen), 0.0, 1e-9);
+  // Colour is only asked where both ends are bound by depth: beside a seam
+  // the step down takes it all whatever colour says.
+  const EdgeKinds one_step = kinds(EdgeKind::kStepDown, EdgeKind::kStepDown, EdgeKind::kStepDown, EdgeKind::kSeam);
+  EXPECT_NEAR(centreOf(cornersTrimmedToSize(face(kLengthM + 0.02, kWidthM), one_step, kLengthM, kWidthM, kTrimLimitM,
+                                            {{kNotSeen, 0.001, kNotSeen, 0.019}}, kAgreementM))
+                  .x(),
+              -0.01, 1e-9);
 }
 
 TEST(CatalogueSizePlacement, AFaceNoLongerThanItsTypeStaysAndTheTrimIsBounded)

@@ -398,6 +398,24 @@ TEST(EdgeEvidence, AnotherWallAtAnEndOfAWalledEdgeReachingOverTheFaceIsAnOcclusi
   EXPECT_EQ(endsOf(std::numeric_limits<double>::quiet_NaN()), EdgeKind::kOcclusion);
 }
 
+// A D4xx carries a face's depth a few pixels over a step down: the depth
+// edge lies outside the face, whose colour ends inside it.
+TEST(EdgeEvidence, AStepDownsColourEdgeInsideItsDepthEdgeIsMeasured)
+{
+  const auto depth = [](int u, int) { return u < kEdgeU ? kFaceDepthM : kFaceDepthM + 0.2; };
+  const auto insetWhereColourEndsAt = [&](double colour_edge_u, double beyond_grey) {
+    const RgbdFrame frame =
+        makeFrame(depth, [=](int u, int) { return u < colour_edge_u ? 150.0 : beyond_grey; });
+    return stepEdgeInsetPx(frame, facePlane(), Eigen::Vector2d(kEdgeU, 30.0), Eigen::Vector2d(kEdgeU, 210.0),
+                           Eigen::Vector2d(1.0, 0.0));
+  };
+  EXPECT_NEAR(insetWhereColourEndsAt(kEdgeU - 4.0, 90.0), 4.0, 1.0);
+  EXPECT_NEAR(insetWhereColourEndsAt(kEdgeU - 4.0, 210.0), 4.0, 1.0) << "a brighter surface beyond";
+  EXPECT_NEAR(insetWhereColourEndsAt(kEdgeU, 90.0), 0.0, 1.0);
+  // The same cardboard beyond: colour cannot tell.
+  EXPECT_TRUE(std::isnan(insetWhereColourEndsAt(kEdgeU - 4.0, 150.0)));
+}
+
 /// Beyond the edge at kEdgeU a wall 0.15 m nearer, whose depth the sensor
 /// carried 5 px over the face (its colour ends at kEdgeU + 5), then the
 /// wall's foot: a line `line_darkening` grey levels darker, 3 px wide.

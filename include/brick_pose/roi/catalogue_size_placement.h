@@ -12,6 +12,7 @@
 // ones colour placed. The measured length and width are not changed.
 
 #include <array>
+#include <limits>
 
 #include <Eigen/Core>
 
@@ -28,9 +29,23 @@ bool depthBoundsEdge(EdgeKind kind);
 /// edge k from corner k to k + 1) with its edges moved in so that the face
 /// is `length_m` x `width_m`. Along each axis the excess (at most
 /// `max_trim_m`; none when the face is not longer) comes off the one end
-/// that `kinds` says depth bounds, or half off each end when both or
-/// neither are.
-std::array<Eigen::Vector3d, 4> cornersTrimmedToSize(const std::array<Eigen::Vector3d, 4>& corners_m,
-                                                    const EdgeKinds& kinds, double length_m, double width_m,
-                                                    double max_trim_m);
+/// that `kinds` says depth bounds, or half off each end when neither is.
+/// When both are, `colour_inset_m` (how far inside its depth edge the
+/// colour image shows edge k end, NaN where it cannot tell: see
+/// stepEdgeInsetPx) shares it. Depth fattens the foreground by different
+/// amounts on different sides (more where the face hides the ground than
+/// where its own side shows below the edge). Both ends seen share it in
+/// proportion, where their sum agrees with the excess within
+/// `colour_agreement_m` (print near an edge, a label's border, can pass for
+/// it: two measures that agree are trusted); one end seen, no farther in
+/// than the excess, takes what it shows and the other end the rest;
+/// otherwise half each.
+std::array<Eigen::Vector3d, 4> cornersTrimmedToSize(
+    const std::array<Eigen::Vector3d, 4>& corners_m, const EdgeKinds& kinds, double length_m, double width_m,
+    double max_trim_m,
+    const std::array<double, 4>& colour_inset_m = {{std::numeric_limits<double>::quiet_NaN(),
+                                                    std::numeric_limits<double>::quiet_NaN(),
+                                                    std::numeric_limits<double>::quiet_NaN(),
+                                                    std::numeric_limits<double>::quiet_NaN()}},
+    double colour_agreement_m = 0.0);
 }  // namespace brick_pose

@@ -123,6 +123,14 @@ struct EdgeEvidenceParams
   /// of its edge; the edge is sought in the colour image that far out
   /// (wallFootShiftPx). 0 leaves the depth edge as it is.
   int max_wall_foot_shift_px = 8;
+  /// At a step down the stereo matcher carries the face's depth this many
+  /// pixels at most over the lower surface beyond (a D4xx fattens a
+  /// foreground by about 3), so the depth edge lies outside the face's
+  /// edge and the face measures long; the edge is sought in the colour
+  /// image that far in (stepEdgeInsetPx), to share a complete face's excess
+  /// between its ends (RoiFilterParams::place_on_catalogue_size). 0: not
+  /// sought.
+  int max_step_inset_px = 6;
 
   void validate() const;  ///< Throws ConfigError naming the field.
 };
@@ -202,6 +210,18 @@ EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, cons
 /// at the depth edge; NaN when it does not change within reach or the edge
 /// cannot be read.
 double wallFootShiftPx(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
+                       const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
+                       const EdgeEvidenceParams& params = EdgeEvidenceParams());
+
+/// How far (pixels, against `outward_px`) the face's true edge lies inside
+/// its depth edge `a_px`-`b_px` at a step down: where the grey level (the
+/// median along the edge) passes half-way from the face's level, read
+/// clear of max_step_inset_px inside, to the level of what lies beyond the
+/// depth edge. 0 when the colour changes at the depth edge or beyond; NaN
+/// when the two levels differ by less than the line contrast (a lower top
+/// of the same cardboard), the change is not within reach, or the edge
+/// cannot be read.
+double stepEdgeInsetPx(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
                        const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
                        const EdgeEvidenceParams& params = EdgeEvidenceParams());
 

@@ -201,7 +201,12 @@ private:
                                        CloudProcessingTimings* cloud_timings) const;
   /// place_on_catalogue_size for one candidate (complete and colour-free
   /// only; others are left as they are).
-  void placeOnCatalogueSize(const PinholeCamera& camera, BrickCandidate& candidate) const;
+  void placeOnCatalogueSize(const RgbdFrame& frame, BrickCandidate& candidate) const;
+  /// How far inside each depth-bounded edge of `candidate` the colour image
+  /// shows the face end (m on its plane; stepEdgeInsetPx), where the edge
+  /// across from it is depth-bounded too; NaN elsewhere or where colour
+  /// cannot tell.
+  std::array<double, 4> colourInsetsM(const RgbdFrame& frame, const BrickCandidate& candidate) const;
   /// Points, plane, OBB and outline geometry; the reason when it fails.
   /// `edges` (optional) replaces params_.edges in reading its edges: a
   /// tile's, read as its tiling read the seams (see seamReadingFor).

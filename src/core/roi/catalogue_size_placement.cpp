@@ -1,6 +1,7 @@
 #include "brick_pose/roi/catalogue_size_placement.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace brick_pose
 {
@@ -9,9 +10,30 @@ bool depthBoundsEdge(EdgeKind kind)
   return kind == EdgeKind::kStepDown || kind == EdgeKind::kCrease || kind == EdgeKind::kDropBesideWall;
 }
 
+namespace
+{
+/// The share of an axis's excess the first of its two depth-bounded ends
+/// takes, from where colour shows each end (NaN: not seen). Two ends seen
+/// must agree with the excess within `agreement_m`; one end seen is taken
+/// up to the excess. Otherwise (and with neither seen) half each.
+double firstEndsShare(double first_inset_m, double second_inset_m, double excess_m, double agreement_m)
+{
+  const bool first_seen = std::isfinite(first_inset_m), second_seen = std::isfinite(second_inset_m);
+  if (first_seen && second_seen)
+  {
+    const double first = std::max(0.0, first_inset_m), both = first + std::max(0.0, second_inset_m);
+    return both > 0.0 && std::abs(both - excess_m) <= agreement_m ? first / both : 0.5;
+  }
+  if (first_seen && first_inset_m <= excess_m) return std::max(0.0, first_inset_m) / excess_m;
+  if (second_seen && second_inset_m <= excess_m) return 1.0 - std::max(0.0, second_inset_m) / excess_m;
+  return 0.5;
+}
+}  // namespace
+
 std::array<Eigen::Vector3d, 4> cornersTrimmedToSize(const std::array<Eigen::Vector3d, 4>& corners_m,
                                                     const EdgeKinds& kinds, double length_m, double width_m,
-                                                    double max_trim_m)
+                                                    double max_trim_m, const std::array<double, 4>& colour_inset_m,
+                                                    double colour_agreement_m)
 {
   const Eigen::Vector3d centre = 0.25 * (corners_m[0] + corners_m[1] + corners_m[2] + corners_m[3]);
   std::array<Eigen::Vector3d, 4> middle, inward;
@@ -33,7 +55,10 @@ std::array<Eigen::Vector3d, 4> cornersTrimmedToSize(const std::array<Eigen::Vect
     const double excess_m = std::min(max_trim_m, extent_m - (first == 0 ? width_m : length_m));
     if (!(excess_m > 0.0)) continue;
     const bool first_by_depth = depthBoundsEdge(kinds[first]), second_by_depth = depthBoundsEdge(kinds[second]);
-    const double first_share = first_by_depth == second_by_depth ? 0.5 : first_by_depth ? 1.0 : 0.0;
+    const double first_share =
+        first_by_depth && second_by_depth
+            ? firstEndsShare(colour_inset_m[first], colour_inset_m[second], excess_m, colour_agreement_m)
+            : first_by_depth == second_by_depth ? 0.5 : first_by_depth ? 1.0 : 0.0;
     trim_m[first] = first_share * excess_m;
     trim_m[second] = (1.0 - first_share) * excess_m;
   }

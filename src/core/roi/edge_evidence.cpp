@@ -579,6 +579,7 @@ void EdgeEvidenceParams::validate() const
   check.require(max_overrun_m > min_step_m, "max_overrun_m", "must be > min_step_m");
   check.require(max_hidden_by_wall_m >= 0.0, "max_hidden_by_wall_m", "must be >= 0");
   check.require(max_wall_foot_shift_px >= 0, "max_wall_foot_shift_px", "must be >= 0");
+  check.require(max_step_inset_px >= 0, "max_step_inset_px", "must be >= 0");
   check.require(seam_search_px >= 0 && seam_search_px + kSeamArm <= probe_px, "seam_search_px",
           "must be in [0, probe_px - 3]");
 }
@@ -793,6 +794,60 @@ double wallFootShiftPx(const RgbdFrame& frame, const PlaneFit& plane, const Eige
   const double before = sign * *(crossing - 1), at = sign * *crossing;
   const double offset = static_cast<double>(crossing - departure.begin());
   return std::max(0.0, offset - 1.0 + (half - before) / std::max(1e-9, at - before));
+}
+
+double stepEdgeInsetPx(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
+                       const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
+                       const EdgeEvidenceParams& params)
+{
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  const double length_px = (b_px - a_px).norm();
+  const int reach = params.max_step_inset_px;
+  if (reach <= 0 || !judgeable(length_px, outward_px, plane)) return kNone;
+  const double margin = endMargin(length_px, params);
+  const Eigen::Vector2d from = a_px + margin * (b_px - a_px), to = b_px - margin * (b_px - a_px);
+  const ProfileLine line{frame, plane, from, to, outward_px.normalized(),
+                         profileRows(from, to, params.sample_spacing_px)};
+  // The face clear of any rim the matcher added, and the surface beyond
+  // the depth edge, past its mixed pixels.
+  const int inside_last = -reach - 1, inside_first = inside_last - params.probe_px;
+  const int beyond_first = 2, beyond_last = beyond_first + params.probe_px;
+  const Profile profile = sampleProfile(line, inside_first, beyond_last, beyond_last);
+  auto levelOf = [&](int first, int last) {
+    std::vector<double> values;
+    for (int row = 0; row < profile.rows; ++row)
+      for (int offset = first; offset <= last; ++offset)
+        if (const float grey = profile.grey[profile.at(row, offset)]; !std::isnan(grey)) values.push_back(grey);
+    return values.size() < 3 ? std::optional<RobustSpread>() : std::optional<RobustSpread>(robustSpread(values));
+  };
+  const std::optional<RobustSpread> face = levelOf(inside_first, inside_last);
+  const std::optional<RobustSpread> beyond = levelOf(beyond_first, beyond_last);
+  if (!face || !beyond) return kNone;
+  // A median along the edge is about 1.25 sigma / sqrt(rows) off its level.
+  const double noise = 1.25 * std::max(face->sigma, beyond->sigma) / std::sqrt(profile.rows);
+  const double step = beyond->centre - face->centre;
+  if (std::abs(step) < std::max(params.min_line_contrast, params.seam_noise_factor * noise)) return kNone;
+  const std::vector<double> medians = columnMedians(profile, profile.grey, -reach, beyond_first);
+  const double sign = step > 0.0 ? 1.0 : -1.0;
+  double before = 0.0;
+  for (int offset = -reach; offset <= beyond_first; ++offset)
+  {
+    const double median = medians[static_cast<std::size_t>(offset - profile.min_offset)];
+    if (std::isnan(median)) return kNone;  // fewer than half the rows in the image
+    const double passed = sign * (median - face->centre) / std::abs(step);
+    if (passed >= 0.5)
+    {
+      // Half-way between the last face pixel and the first beyond it; the
+      // depth edge runs through the last pixel with the face's depth.
+      // Already passed at the deepest offset read: something else (a line
+      // of print) lies there, or the change is deeper than reach.
+      if (offset == -reach) return kNone;
+      const double crossing = offset - 1.0 + (0.5 - before) / std::max(1e-9, passed - before);
+      return std::max(0.0, 0.5 - crossing);
+    }
+    before = passed;
+  }
+  return kNone;
 }
 
 SeamScore scoreSeam(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,

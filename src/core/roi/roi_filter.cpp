@@ -354,7 +354,7 @@ RoiResult RoiFilter::filter(const RgbdFrame& frame, const Segment& segment, cons
   if (auto reason = measure(frame, segment, context, cloud_timings, candidate)) return *reason;
   if (auto reason = assignType(frame, context, segment, candidate)) return *reason;
   judgeCompleteness(frame, context, !segment.type_name.empty(), candidate);
-  placeOnCatalogueSize(frame.camera, candidate);
+  placeOnCatalogueSize(frame, candidate);
   return candidate;
 }
 
@@ -368,25 +368,52 @@ RoiOutcome RoiFilter::filterSplitting(const RgbdFrame& frame, const Segment& seg
                                       CloudProcessingTimings* cloud_timings) const
 {
   RoiOutcome outcome = filterSplittingAsMeasured(frame, segment, context, cloud_timings);
-  for (BrickCandidate& candidate : outcome.candidates) placeOnCatalogueSize(frame.camera, candidate);
+  for (BrickCandidate& candidate : outcome.candidates) placeOnCatalogueSize(frame, candidate);
   return outcome;
 }
 
-void RoiFilter::placeOnCatalogueSize(const PinholeCamera& camera, BrickCandidate& candidate) const
+void RoiFilter::placeOnCatalogueSize(const RgbdFrame& frame, BrickCandidate& candidate) const
 {
+  // Each end's colour edge is read to about a pixel: two ends, two pixels
+  // at the face's distance.
+  constexpr double kColourAgreementPx = 2.0;
   // A colour segment ends where its colour does, not where depth does.
   if (!params_.place_on_catalogue_size || !candidate.complete || candidate.typed_by_colour) return;
   const BrickType* type = catalogue_.find(candidate.type_name);
   if (!type) return;
   const std::array<Eigen::Vector3d, 4> corners_m =
       cornersTrimmedToSize(candidate.corners_m, candidate.edge_kinds, type->length_m, type->width_m,
-                           params_.dimensions.tolerance_m);
+                           params_.dimensions.tolerance_m, colourInsetsM(frame, candidate),
+                           kColourAgreementPx * candidate.centroid_m.z() / frame.camera.fx_px);
   QuadCorners corners_px;
-  for (int k = 0; k < 4; ++k) corners_px[k] = camera.project(corners_m[k]);
+  for (int k = 0; k < 4; ++k) corners_px[k] = frame.camera.project(corners_m[k]);
   const double measured_length_m = candidate.length_m, measured_width_m = candidate.width_m;
-  placeCorners(camera, corners_px, corners_m, candidate);
+  placeCorners(frame.camera, corners_px, corners_m, candidate);
   candidate.length_m = measured_length_m;
   candidate.width_m = measured_width_m;
+}
+
+std::array<double, 4> RoiFilter::colourInsetsM(const RgbdFrame& frame, const BrickCandidate& candidate) const
+{
+  std::array<double, 4> insets_m;
+  insets_m.fill(std::numeric_limits<double>::quiet_NaN());
+  for (int k = 0; k < 4; ++k)
+  {
+    if (!depthBoundsEdge(candidate.edge_kinds[k]) || !depthBoundsEdge(candidate.edge_kinds[(k + 2) % 4])) continue;
+    const Eigen::Vector2d& a = candidate.corners_px[k];
+    const Eigen::Vector2d& b = candidate.corners_px[(k + 1) % 4];
+    const Eigen::Vector2d outward = outwardOf(candidate.corners_px, k, candidate.centroid_px).normalized();
+    const double inset_px = stepEdgeInsetPx(frame, candidate.plane, a, b, outward, params_.edges);
+    if (!std::isfinite(inset_px)) continue;
+    // The same distance on the face's plane, at the edge's middle.
+    const Eigen::Vector2d middle = 0.5 * (a + b);
+    Eigen::Vector3d on_edge, inside;
+    const Eigen::Vector2d moved = middle - inset_px * outward;
+    if (candidate.plane.intersectRay(frame.camera.ray(middle.x(), middle.y()), on_edge) &&
+        candidate.plane.intersectRay(frame.camera.ray(moved.x(), moved.y()), inside))
+      insets_m[k] = (inside - on_edge).norm();
+  }
+  return insets_m;
 }
 
 RoiOutcome RoiFilter::filterSplittingAsMeasured(const RgbdFrame& frame, const Segment& segment,
