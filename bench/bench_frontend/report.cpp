@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 
 #include "brick_pose/common/statistics.h"
@@ -111,26 +112,36 @@ void printRow(const std::string& scene, const std::string& mode, const std::stri
               medianP95(stats.total_ms, "%.0f").c_str(), formatted("%.0f", percentile(stats.cpu_ms, 0.5)).c_str());
 }
 
+/// Calls `row` with each rig cell that ran (class, mode, resolution and its
+/// stats), in table order; colour-free modes only when `colour_free_only`.
+void forEachRigCell(const RunInfo& run, const RigResults& rig, bool colour_free_only,
+                    const std::function<void(const SceneClass&, const ModeSpec&, const Resolution&,
+                                             const CellStats&)>& row)
+{
+  for (std::size_t c = 0; c < run.classes.size(); ++c)
+    for (std::size_t m = 0; m < run.modes.size(); ++m)
+    {
+      if (!run.classes[c].kind || !run.modes[m].mode || (colour_free_only && !run.modes[m].colour_free)) continue;
+      for (std::size_t r = 0; r < run.resolutions.size(); ++r)
+      {
+        const CellStats stats = mergedCells(rig.cells, c, m, r);
+        if (!stats.total_ms.empty()) row(run.classes[c], run.modes[m], run.resolutions[r], stats);
+      }
+    }
+}
+
 /// Where the colour-free modes spend a frame, per class and resolution: the
 /// timing targets are on the whole front end, and this says which stage to cut.
 void printStageTimes(const RunInfo& run, const RigResults& rig)
 {
   std::printf("\nColour-free stage times, ms p50 (wall): segmentation / cloud / roi / total\n\n");
   std::printf("| scene class | mode | resolution | segmentation | cloud | roi | total |\n|---|---|---|---|---|---|---|\n");
-  for (std::size_t c = 0; c < run.classes.size(); ++c)
-    for (std::size_t m = 0; m < run.modes.size(); ++m)
-    {
-      if (!run.classes[c].kind || !run.modes[m].mode || !run.modes[m].colour_free) continue;
-      for (std::size_t r = 0; r < run.resolutions.size(); ++r)
-      {
-        const CellStats stats = mergedCells(rig.cells, c, m, r);
-        if (stats.total_ms.empty()) continue;
-        std::printf("| %s | %s | %s | %.1f | %.1f | %.1f | %.1f |\n", run.classes[c].label.c_str(),
-                    run.modes[m].name.c_str(), run.resolutions[r].label.c_str(),
-                    percentile(stats.segmentation_ms, 0.5), percentile(stats.cloud_ms, 0.5),
-                    percentile(stats.roi_ms, 0.5), percentile(stats.total_ms, 0.5));
-      }
-    }
+  forEachRigCell(run, rig, true, [](const SceneClass& scene_class, const ModeSpec& mode, const Resolution& resolution,
+                                    const CellStats& stats) {
+    std::printf("| %s | %s | %s | %.1f | %.1f | %.1f | %.1f |\n", scene_class.label.c_str(), mode.name.c_str(),
+                resolution.label.c_str(), percentile(stats.segmentation_ms, 0.5), percentile(stats.cloud_ms, 0.5),
+                percentile(stats.roi_ms, 0.5), percentile(stats.total_ms, 0.5));
+  });
 }
 
 void printBreakdown(const std::string& name, const eval::ScoreTally& tally)
@@ -181,19 +192,13 @@ void printCompleteCentres(const RunInfo& run, const RigResults& rig)
 {
   std::printf("\nCentres of the complete faces (whole tops of their type), mm\n\n");
   std::printf("| scene class | mode | resolution | complete faces | centre mm median / p95 |\n|---|---|---|---|---|\n");
-  for (std::size_t c = 0; c < run.classes.size(); ++c)
-    for (std::size_t m = 0; m < run.modes.size(); ++m)
-    {
-      if (!run.classes[c].kind || !run.modes[m].mode) continue;
-      for (std::size_t r = 0; r < run.resolutions.size(); ++r)
-      {
-        const CellStats stats = mergedCells(rig.cells, c, m, r);
-        if (stats.complete_centre_mm.empty()) continue;
-        std::printf("| %s | %s | %s | %zu | %s |\n", run.classes[c].label.c_str(), run.modes[m].name.c_str(),
-                    run.resolutions[r].label.c_str(), stats.complete_centre_mm.size(),
-                    medianP95(stats.complete_centre_mm, "%.1f").c_str());
-      }
-    }
+  forEachRigCell(run, rig, false, [](const SceneClass& scene_class, const ModeSpec& mode,
+                                     const Resolution& resolution, const CellStats& stats) {
+    if (stats.complete_centre_mm.empty()) return;
+    std::printf("| %s | %s | %s | %zu | %s |\n", scene_class.label.c_str(), mode.name.c_str(),
+                resolution.label.c_str(), stats.complete_centre_mm.size(),
+                medianP95(stats.complete_centre_mm, "%.1f").c_str());
+  });
 }
 
 /// Where the complete colour-free faces' edges lie against the truth's, by
@@ -211,29 +216,24 @@ void printCompleteEdgeOffsets(const RunInfo& run, const RigResults& rig)
               run.options.measured_corners ? ", as measured" : ", after place_on_catalogue_size");
   std::printf("| scene class | mode | resolution | step down | crease | line, seam, size-placed line, wall foot |\n"
               "|---|---|---|---|---|---|\n");
-  for (std::size_t c = 0; c < run.classes.size(); ++c)
-    for (std::size_t m = 0; m < run.modes.size(); ++m)
+  forEachRigCell(run, rig, true, [&groups](const SceneClass& scene_class, const ModeSpec& mode,
+                                           const Resolution& resolution, const CellStats& stats) {
+    if (stats.complete_edge_offset_mm.empty()) return;
+    std::printf("| %s | %s | %s", scene_class.label.c_str(), mode.name.c_str(), resolution.label.c_str());
+    for (const auto& [name, kinds] : groups)
     {
-      if (!run.classes[c].kind || !run.modes[m].mode || !run.modes[m].colour_free) continue;
-      for (std::size_t r = 0; r < run.resolutions.size(); ++r)
-      {
-        const CellStats stats = mergedCells(rig.cells, c, m, r);
-        if (stats.complete_edge_offset_mm.empty()) continue;
-        std::printf("| %s | %s | %s", run.classes[c].label.c_str(), run.modes[m].name.c_str(),
-                    run.resolutions[r].label.c_str());
-        for (const auto& [name, kinds] : groups)
-        {
-          std::vector<double> offsets;
-          for (const EdgeKind kind : kinds)
-            if (const auto found = stats.complete_edge_offset_mm.find(toString(kind));
-                found != stats.complete_edge_offset_mm.end())
-              offsets.insert(offsets.end(), found->second.begin(), found->second.end());
-          std::printf(" | %s", offsets.empty() ? "-" : (formatted("%.1f", percentile(offsets, 0.5)) + " (" +
-                                                        std::to_string(offsets.size()) + ")").c_str());
-        }
-        std::printf(" |\n");
-      }
+      std::vector<double> offsets;
+      for (const EdgeKind kind : kinds)
+        if (const auto found = stats.complete_edge_offset_mm.find(toString(kind));
+            found != stats.complete_edge_offset_mm.end())
+          offsets.insert(offsets.end(), found->second.begin(), found->second.end());
+      std::printf(" | %s", offsets.empty() ? "-"
+                                            : (formatted("%.1f", percentile(offsets, 0.5)) + " (" +
+                                               std::to_string(offsets.size()) + ")")
+                                                  .c_str());
     }
+    std::printf(" |\n");
+  });
 }
 
 void printTables(const RunInfo& run, const RigResults& rig, const MosdResults& mosd)

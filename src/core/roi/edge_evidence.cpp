@@ -748,18 +748,32 @@ EdgeKind occlusionAtEdgeEnds(const RgbdFrame& frame, const PlaneFit& plane, cons
   return EdgeKind::kUnknown;
 }
 
+namespace
+{
+/// The edge from `a_px` to `b_px` between its end margins, to be probed
+/// `reach` pixels across (none when reach is 0 or the edge cannot be read).
+std::optional<ProfileLine> lineClearOfCorners(const RgbdFrame& frame, const PlaneFit& plane,
+                                              const Eigen::Vector2d& a_px, const Eigen::Vector2d& b_px,
+                                              const Eigen::Vector2d& outward_px, int reach,
+                                              const EdgeEvidenceParams& params)
+{
+  const double length_px = (b_px - a_px).norm();
+  if (reach <= 0 || !judgeable(length_px, outward_px, plane)) return std::nullopt;
+  const double margin = endMargin(length_px, params);
+  const Eigen::Vector2d from = a_px + margin * (b_px - a_px), to = b_px - margin * (b_px - a_px);
+  return ProfileLine{frame, plane, from, to, outward_px.normalized(), profileRows(from, to, params.sample_spacing_px)};
+}
+}  // namespace
+
 double wallFootShiftPx(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
                        const Eigen::Vector2d& b_px, const Eigen::Vector2d& outward_px,
                        const EdgeEvidenceParams& params)
 {
   constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
-  const double length_px = (b_px - a_px).norm();
   const int reach = params.max_wall_foot_shift_px;
-  if (reach <= 0 || !judgeable(length_px, outward_px, plane)) return kNone;
-  const double margin = endMargin(length_px, params);
-  const Eigen::Vector2d from = a_px + margin * (b_px - a_px), to = b_px - margin * (b_px - a_px);
-  const ProfileLine line{frame, plane, from, to, outward_px.normalized(),
-                         profileRows(from, to, params.sample_spacing_px)};
+  const std::optional<ProfileLine> found = lineClearOfCorners(frame, plane, a_px, b_px, outward_px, reach, params);
+  if (!found) return kNone;
+  const ProfileLine& line = *found;
   const Profile profile = sampleProfile(line, -params.probe_px, reach, reach);
   // The face's level and noise, clear of the edge's own pixels.
   std::vector<double> inside;
@@ -801,13 +815,10 @@ double stepEdgeInsetPx(const RgbdFrame& frame, const PlaneFit& plane, const Eige
                        const EdgeEvidenceParams& params)
 {
   constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
-  const double length_px = (b_px - a_px).norm();
   const int reach = params.max_step_inset_px;
-  if (reach <= 0 || !judgeable(length_px, outward_px, plane)) return kNone;
-  const double margin = endMargin(length_px, params);
-  const Eigen::Vector2d from = a_px + margin * (b_px - a_px), to = b_px - margin * (b_px - a_px);
-  const ProfileLine line{frame, plane, from, to, outward_px.normalized(),
-                         profileRows(from, to, params.sample_spacing_px)};
+  const std::optional<ProfileLine> found = lineClearOfCorners(frame, plane, a_px, b_px, outward_px, reach, params);
+  if (!found) return kNone;
+  const ProfileLine& line = *found;
   // The face clear of any rim the matcher added, and the surface beyond
   // the depth edge, past its mixed pixels.
   const int inside_last = -reach - 1, inside_first = inside_last - params.probe_px;
