@@ -62,6 +62,8 @@ struct BrickCandidate
   double length_m = 0.0;  ///< Mean of the two long quad edges in 3D.
   /// Distance between the two long quad edges in 3D (the short edges'
   /// length for a whole face; still the width when the face is cut slantwise).
+  /// Both stay as measured when a complete colour-free face's corners are
+  /// then placed at its catalogue size (RoiFilterParams::place_on_catalogue_size).
   double width_m = 0.0;
   /// Area inside the segment's outline over the quad's area (1 for a whole,
   /// unoccluded face; lower for notched or irregular segments).
