@@ -763,6 +763,22 @@ std::optional<ProfileLine> lineClearOfCorners(const RgbdFrame& frame, const Plan
   const Eigen::Vector2d from = a_px + margin * (b_px - a_px), to = b_px - margin * (b_px - a_px);
   return ProfileLine{frame, plane, from, to, outward_px.normalized(), profileRows(from, to, params.sample_spacing_px)};
 }
+
+/// The grey level and scatter of `profile`'s samples from offset `first`
+/// to `last`; none from fewer than three.
+std::optional<RobustSpread> greyLevel(const Profile& profile, int first, int last)
+{
+  std::vector<double> values;
+  for (int row = 0; row < profile.rows; ++row)
+    for (int offset = first; offset <= last; ++offset)
+      if (const float grey = profile.grey[profile.at(row, offset)]; !std::isnan(grey)) values.push_back(grey);
+  if (values.size() < 3) return std::nullopt;
+  return robustSpread(values);
+}
+
+/// How far a median along the edge, over `profile`'s rows, lies off the
+/// level of samples scattered by `sigma`: about 1.25 sigma / sqrt(rows).
+double alongEdgeMedianError(double sigma, const Profile& profile) { return 1.25 * sigma / std::sqrt(profile.rows); }
 }  // namespace
 
 double wallFootShiftPx(const RgbdFrame& frame, const PlaneFit& plane, const Eigen::Vector2d& a_px,
@@ -776,15 +792,11 @@ double wallFootShiftPx(const RgbdFrame& frame, const PlaneFit& plane, const Eige
   const ProfileLine& line = *found;
   const Profile profile = sampleProfile(line, -params.probe_px, reach, reach);
   // The face's level and noise, clear of the edge's own pixels.
-  std::vector<double> inside;
-  for (int row = 0; row < profile.rows; ++row)
-    for (int offset = profile.min_offset; offset < -params.inner_gap_px; ++offset)
-      if (const float grey = profile.grey[profile.at(row, offset)]; !std::isnan(grey)) inside.push_back(grey);
-  if (inside.size() < 3) return kNone;
-  const RobustSpread face = robustSpread(inside);
-  // A median along the edge is about 1.25 sigma / sqrt(rows) off its level.
+  const std::optional<RobustSpread> inside = greyLevel(profile, profile.min_offset, -params.inner_gap_px - 1);
+  if (!inside) return kNone;
+  const RobustSpread& face = *inside;
   const double contrast =
-      std::max(params.min_line_contrast, params.seam_noise_factor * 1.25 * face.sigma / std::sqrt(profile.rows));
+      std::max(params.min_line_contrast, params.seam_noise_factor * alongEdgeMedianError(face.sigma, profile));
   // How far each offset's median (along the edge) lies off the face.
   const std::vector<double> medians = columnMedians(profile, profile.grey, 0, reach);
   std::vector<double> departure(static_cast<std::size_t>(reach) + 1);
@@ -824,18 +836,10 @@ double stepEdgeInsetPx(const RgbdFrame& frame, const PlaneFit& plane, const Eige
   const int inside_last = -reach - 1, inside_first = inside_last - params.probe_px;
   const int beyond_first = 2, beyond_last = beyond_first + params.probe_px;
   const Profile profile = sampleProfile(line, inside_first, beyond_last, beyond_last);
-  auto levelOf = [&](int first, int last) {
-    std::vector<double> values;
-    for (int row = 0; row < profile.rows; ++row)
-      for (int offset = first; offset <= last; ++offset)
-        if (const float grey = profile.grey[profile.at(row, offset)]; !std::isnan(grey)) values.push_back(grey);
-    return values.size() < 3 ? std::optional<RobustSpread>() : std::optional<RobustSpread>(robustSpread(values));
-  };
-  const std::optional<RobustSpread> face = levelOf(inside_first, inside_last);
-  const std::optional<RobustSpread> beyond = levelOf(beyond_first, beyond_last);
+  const std::optional<RobustSpread> face = greyLevel(profile, inside_first, inside_last);
+  const std::optional<RobustSpread> beyond = greyLevel(profile, beyond_first, beyond_last);
   if (!face || !beyond) return kNone;
-  // A median along the edge is about 1.25 sigma / sqrt(rows) off its level.
-  const double noise = 1.25 * std::max(face->sigma, beyond->sigma) / std::sqrt(profile.rows);
+  const double noise = alongEdgeMedianError(std::max(face->sigma, beyond->sigma), profile);
   const double step = beyond->centre - face->centre;
   if (std::abs(step) < std::max(params.min_line_contrast, params.seam_noise_factor * noise)) return kNone;
   const std::vector<double> medians = columnMedians(profile, profile.grey, -reach, beyond_first);
