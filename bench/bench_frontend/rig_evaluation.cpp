@@ -42,6 +42,26 @@ RenderedFrame render(const sim::SceneGenerator& generator, const SceneClass& sce
   return frame;
 }
 
+/// The segments of a frame, each in a colour of its own over black, and
+/// outlined: for reading by eye which faces a segment merged.
+cv::Mat drawSegments(const std::vector<Segment>& segments, const cv::Size& size)
+{
+  cv::Mat picture(size, CV_8UC3, cv::Scalar::all(0));
+  for (std::size_t s = 0; s < segments.size(); ++s)
+  {
+    // Well spread hues from a multiplicative hash of the index.
+    const unsigned hash = static_cast<unsigned>(s + 1) * 2654435761u;
+    const cv::Scalar colour(64 + (hash & 0x7F), 64 + ((hash >> 8) & 0x7F), 64 + ((hash >> 16) & 0x7F));
+    const Segment& segment = segments[s];
+    cv::Mat region = picture(segment.bounding_box_px);
+    region.setTo(colour, segment.mask);
+    std::vector<std::vector<cv::Point>> outlines;
+    cv::findContours(segment.mask.clone(), outlines, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+    cv::drawContours(region, outlines, -1, cv::Scalar::all(255), 1);
+  }
+  return picture;
+}
+
 RgbdFrame toRgbd(const RenderedFrame& frame, const PinholeCamera& camera, int index)
 {
   FrameHeader header;
@@ -133,6 +153,8 @@ RigResults runRig(const std::vector<BrickCatalogue>& catalogues, const std::vect
           cv::Mat bgr;
           cv::cvtColor(frame.rgb, bgr, cv::COLOR_RGB2BGR);
           cv::imwrite(options.overlay_dir + "/" + file + "_rgb.png", bgr);
+          cv::imwrite(options.overlay_dir + "/" + file + "_segments.png",
+                      drawSegments(front_end.segment(frame), frame.rgb.size()));
         }
       }
     }
