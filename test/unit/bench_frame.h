@@ -33,6 +33,8 @@ struct BenchClass
 };
 constexpr BenchClass kTouchingRowsClass{sim::SceneKind::kTouchingRows, 3, 100};
 constexpr BenchClass kPalletLayerClass{sim::SceneKind::kPalletLayer, 4, 125};
+constexpr BenchClass kPalletStackClass{sim::SceneKind::kPalletStack, 5, 150};
+constexpr BenchClass kTableBoxesClass{sim::SceneKind::kTableBoxes, 6, 175};
 
 /// One bench frame run colour-free with the up direction and the ground
 /// given (as the benchmark gives them).
@@ -68,8 +70,8 @@ inline BenchFrameRun runBenchFrame(const BrickCatalogue& catalogue, const BenchC
   return run;
 }
 
-/// Whole tops in view and found, of bench_frontend's pallet-layer frame
-/// `frame`, with no face found complete that is not.
+/// Whole tops in view and found, of a bench_frontend frame of boxes, with
+/// no face found complete that is not.
 struct WholeTops
 {
   int whole = 0;
@@ -77,10 +79,10 @@ struct WholeTops
   int found_complete = 0;  ///< found and marked complete (pickable)
 };
 
-inline WholeTops palletLayerBenchFrame(int frame, const std::string& resolution)
+inline WholeTops boxesBenchFrame(const BenchClass& bench_class, int frame, const std::string& resolution)
 {
   const BrickCatalogue boxes = BrickCatalogue::fromYamlFile(BRICK_POSE_SOURCE_DIR "/config/boxes.yaml");
-  const BenchFrameRun run = runBenchFrame(boxes, kPalletLayerClass, frame, resolution);
+  const BenchFrameRun run = runBenchFrame(boxes, bench_class, frame, resolution);
   const eval::FrameMatch match = eval::matchCandidates(
       run.result.candidates, eval::rigSceneTruth(run.rendered, run.up_in_camera), run.rendered.camera);
   WholeTops tops;
@@ -92,6 +94,12 @@ inline WholeTops palletLayerBenchFrame(int frame, const std::string& resolution)
   }
   for (const eval::CandidateMatch& candidate : match.candidates) EXPECT_FALSE(candidate.false_complete);
   return tops;
+}
+
+/// boxesBenchFrame of the pallet-layer class.
+inline WholeTops palletLayerBenchFrame(int frame, const std::string& resolution)
+{
+  return boxesBenchFrame(kPalletLayerClass, frame, resolution);
 }
 }  // namespace test
 }  // namespace brick_pose

@@ -159,6 +159,36 @@ TEST(TypeEvidence, ASideEndingAtATypesOwnHeightBreaksATieOfStandingMisfits)
   EXPECT_FALSE(typeDoubt(small_first, kFlat, 0.30, 0.20, {side(0.07, false)}).empty());
 }
 
+TEST(TypeEvidence, ALevelSeenWhereATypeWouldStandBreaksATieOfStandingMisfits)
+{
+  // The same tie, 0.22 m up: a lower box's top seen beside the face at
+  // 0.15 m is where a flat box stands; at 0.07 m, where a tall one does.
+  const StackHeights stacks = StackHeights::of({kSmall, kFlat});
+  const double height_m = 0.22, tolerance_m = 0.02;
+  auto misfits = [&](const std::vector<double>& levels_m) {
+    return std::vector<double>{
+        standingMisfitM(kSmall, height_m, stacks) + footingUnseenPenaltyM(kSmall, height_m, levels_m, tolerance_m),
+        standingMisfitM(kFlat, height_m, stacks) + footingUnseenPenaltyM(kFlat, height_m, levels_m, tolerance_m)};
+  };
+  const std::vector<const BrickType*> small_first{&kSmall, &kFlat};
+  EXPECT_EQ(closestType(small_first, 0.30, 0.20, {}, misfits({0.148})), &kFlat);
+  EXPECT_EQ(closestType(small_first, 0.30, 0.20, {}, misfits({0.072})), &kSmall);
+  // Both footings seen, or neither: the order given decides, as before.
+  EXPECT_EQ(closestType(small_first, 0.30, 0.20, {}, misfits({0.072, 0.148})), &kSmall);
+  EXPECT_EQ(closestType(small_first, 0.30, 0.20, {}, misfits({0.11})), &kSmall);
+  // Standing on the support needs no level.
+  EXPECT_EQ(footingUnseenPenaltyM(kSmall, 0.15, {}, tolerance_m), 0.0);
+  EXPECT_EQ(footingUnseenPenaltyM(kFlat, 0.15, {}, tolerance_m), kFootingUnseenPenaltyM);
+  // Less than an item beneath: a tall box exactly on the support beats a
+  // flat one on an item whose footing shows (0.15 m up, a level at 0.08 m).
+  EXPECT_EQ(closestType({&kFlat, &kSmall}, 0.30, 0.20, {},
+                        {standingMisfitM(kFlat, 0.15, stacks) + footingUnseenPenaltyM(kFlat, 0.15, {0.08}, tolerance_m),
+                         standingMisfitM(kSmall, 0.15, stacks)}),
+            &kSmall);
+  // And less than a hidden side's: it only names the likelier of a tie.
+  EXPECT_LT(kFootingUnseenPenaltyM, kHiddenSidePenaltyM);
+}
+
 TEST(TypeEvidence, NearlyEqualFitsLeaveADoubtAndClearOnesDoNot)
 {
   const BrickType upright = box("upright", 0.128, 0.038, 0.212);

@@ -25,6 +25,15 @@ struct FootLevelParams
   /// Ring pixels lower than the face's plane by more than this (m) may be
   /// where it stands.
   double below_face_m = 0.02;
+  /// ... and lie on a level surface: its normal, from the depth this many
+  /// pixels to either side, within max_level_tilt_deg of the support's (a
+  /// side face is 90 degrees off; D4xx noise tilts a level surface's
+  /// normal by some 10-25 degrees over a few pixels at 1-2 m).
+  int normal_baseline_px = 3;
+  double max_level_tilt_deg = 45.0;
+  /// ... and bend no more than this (m) over that baseline: a pixel across
+  /// a depth jump, a mix of a near and a far surface, lies at any height.
+  double max_bend_m = 0.01;
   /// A level: at least this share of those pixels, and min_pixels of them,
   /// within `tolerance_m` of one height above the support.
   double min_share = 0.2;

@@ -120,13 +120,30 @@ constexpr double kStackItemPenaltyM = 0.01;
 /// How far `type`'s top would at best be from `height_above_support_m` (m)
 /// standing on the support or on a stack of items on it, with
 /// kStackItemPenaltyM for each item (0: standing exactly on the support).
-/// Levels seen around a face's foot are left out: on an oblique view the
-/// box's own side face can read as one (the densest heights just below the
-/// top), and a level only ever widens the doubt (typesStandingAt).
+/// Levels seen around a face's foot are left out here: a level only widens
+/// the doubt (typesStandingAt) and only breaks ties (footingUnseenPenaltyM).
 double standingMisfitM(const BrickType& type, double height_above_support_m, const StackHeights& stacks);
 /// standingMisfitM of each of `types`, in their order.
 std::vector<double> standingMisfitsM(const std::vector<const BrickType*>& types, double height_above_support_m,
                                      const StackHeights& stacks);
+
+/// What a type loses (m, added to its standing misfit) when the surface it
+/// would stand on is not seen beside the face: of two types whose tops are
+/// one size and whose heights stack to the face's either way (a box_flat on
+/// a box_small, or the reverse), the one whose footing shows around the
+/// face's foot, as a lower box's top at the face's height less the type's,
+/// is the likelier. A neighbour just that high could show the same, so the
+/// other type stays in doubt (rivalsInDoubt); this only names the likelier.
+/// Smaller than any misfit that tells types apart (kStackItemPenaltyM,
+/// kHiddenSidePenaltyM).
+constexpr double kFootingUnseenPenaltyM = 0.003;
+
+/// kFootingUnseenPenaltyM when `type`, its top `height_above_support_m`
+/// up, would stand neither on the support (its bottom within `tolerance_m`
+/// of it) nor on one of `levels_m` (levelsAroundFoot) within `tolerance_m`;
+/// else 0.
+double footingUnseenPenaltyM(const BrickType& type, double height_above_support_m,
+                             const std::vector<double>& levels_m, double tolerance_m);
 
 /// Whether `type`, its top `height_above_support_m` up, can only be
 /// standing on the support itself: its bottom within `tolerance_m` of the

@@ -10,11 +10,43 @@ namespace brick_pose
 {
 namespace
 {
-/// The heights above the support of the ring's pixels lower than the face.
+/// Whether the surface at `point_m` (pixel (u, v)) lies level: its normal,
+/// from the depth `params.normal_baseline_px` to either side along each
+/// image axis, within max_level_tilt_deg (cosine `min_cos_tilt`) of `up`,
+/// and the point midway between each pair within max_bend_m of it. A pixel
+/// across a depth jump (a mix of a near and a far surface, at any height
+/// between them) has no such neighbourhood. Unknown (no depth around, the
+/// image border) is not level.
+bool levelAt(const RgbdFrame& frame, int u, int v, const Eigen::Vector3d& point_m, const Eigen::Vector3d& up,
+             double min_cos_tilt, const FootLevelParams& params)
+{
+  const int baseline_px = params.normal_baseline_px;
+  auto point = [&](int pu, int pv, Eigen::Vector3d& out) {
+    if (pu < 0 || pv < 0 || pu >= frame.width_px() || pv >= frame.height_px()) return false;
+    const float z = frame.depthAt(pu, pv);
+    if (!(z > 0.0f)) return false;
+    out = frame.camera.backProject(pu, pv, z);
+    return true;
+  };
+  Eigen::Vector3d left, right, above, below;
+  if (!point(u - baseline_px, v, left) || !point(u + baseline_px, v, right) || !point(u, v - baseline_px, above) ||
+      !point(u, v + baseline_px, below))
+    return false;
+  if ((0.5 * (left + right) - point_m).norm() > params.max_bend_m ||
+      (0.5 * (above + below) - point_m).norm() > params.max_bend_m)
+    return false;
+  const Eigen::Vector3d normal = (right - left).cross(below - above);
+  const double norm = normal.norm();
+  return norm > 0.0 && std::abs(normal.dot(up)) >= min_cos_tilt * norm;
+}
+
+/// The heights above the support of the ring's pixels lower than the face
+/// that lie on a level surface.
 std::vector<double> lowerRingHeights(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box_px,
                                      const PlaneFit& plane, const UpDirection& support, const FootLevelParams& params)
 {
   std::vector<double> heights_m;
+  const double min_cos_tilt = std::cos(params.max_level_tilt_deg * M_PI / 180.0);
   const OutlineRing ring = outlineRing(frame, mask, box_px, params.inner_px, params.outer_px);
   for (int y = 0; y < ring.ring.rows; ++y)
   {
@@ -26,7 +58,14 @@ std::vector<double> lowerRingHeights(const RgbdFrame& frame, const cv::Mat& mask
       const float z = frame.depthAt(u, v);
       if (!(z > 0.0f)) continue;
       const Eigen::Vector3d point = frame.camera.backProject(u, v, z);
-      if (plane.signedDistance(point) < -params.below_face_m) heights_m.push_back(support.heightAboveSupport(point));
+      // A side face below the face's edge (its own, seen obliquely, or a
+      // lower neighbour's) has pixels at every height down it, densest just
+      // where the ring crosses it: only level surfaces are places to stand.
+      if (plane.signedDistance(point) < -params.below_face_m &&
+          levelAt(frame, u, v, point, support.support_normal, min_cos_tilt, params))
+      {
+        heights_m.push_back(support.heightAboveSupport(point));
+      }
     }
   }
   return heights_m;

@@ -278,8 +278,12 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
   // the face's real edges say how tall the box is.
   const std::vector<SideFaceEvidence> sides =
       rivals.size() > 1 ? sidesSeenToTheirFoot(frame, context, candidate, tallest_m) : std::vector<SideFaceEvidence>();
-  const std::vector<double> standing_misfits_m =
+  std::vector<double> standing_misfits_m =
       standing ? standingMisfitsM(fitting, standing->height_m, stack_heights_) : std::vector<double>();
+  // Of types tied there, the one whose footing shows beside the face.
+  for (std::size_t i = 0; i < standing_misfits_m.size(); ++i)
+    standing_misfits_m[i] += footingUnseenPenaltyM(*fitting[i], standing->height_m, standing->levels_m,
+                                                   params_.height_above_support_tolerance_m);
   const BrickType* best = closestType(fitting, candidate.length_m, candidate.width_m, sides, standing_misfits_m);
   if (!best)
   {

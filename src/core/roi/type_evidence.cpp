@@ -207,6 +207,16 @@ std::vector<double> standingMisfitsM(const std::vector<const BrickType*>& types,
   return misfits_m;
 }
 
+double footingUnseenPenaltyM(const BrickType& type, double height_above_support_m,
+                             const std::vector<double>& levels_m, double tolerance_m)
+{
+  const double below_m = height_above_support_m - type.height_m;
+  const bool seen = std::abs(below_m) <= tolerance_m ||
+                    std::any_of(levels_m.begin(), levels_m.end(),
+                                [&](double level_m) { return std::abs(level_m - below_m) <= tolerance_m; });
+  return seen ? 0.0 : kFootingUnseenPenaltyM;
+}
+
 bool standsOnSupportAlone(const BrickType& type, double height_above_support_m, const std::vector<double>& levels_m,
                           double tolerance_m)
 {
