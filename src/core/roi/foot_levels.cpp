@@ -10,6 +10,16 @@ namespace brick_pose
 {
 namespace
 {
+/// The point pixel (u, v) sees; false off the image or without depth.
+bool pointAt(const RgbdFrame& frame, int u, int v, Eigen::Vector3d& point_m)
+{
+  if (u < 0 || v < 0 || u >= frame.width_px() || v >= frame.height_px()) return false;
+  const float z = frame.depthAt(u, v);
+  if (!(z > 0.0f)) return false;
+  point_m = frame.camera.backProject(u, v, z);
+  return true;
+}
+
 /// Whether the surface at `point_m` (pixel (u, v)) lies level: its normal,
 /// from the depth `params.normal_baseline_px` to either side along each
 /// image axis, within max_level_tilt_deg (cosine `min_cos_tilt`) of `up`,
@@ -21,16 +31,9 @@ bool levelAt(const RgbdFrame& frame, int u, int v, const Eigen::Vector3d& point_
              double min_cos_tilt, const FootLevelParams& params)
 {
   const int baseline_px = params.normal_baseline_px;
-  auto point = [&](int pu, int pv, Eigen::Vector3d& out) {
-    if (pu < 0 || pv < 0 || pu >= frame.width_px() || pv >= frame.height_px()) return false;
-    const float z = frame.depthAt(pu, pv);
-    if (!(z > 0.0f)) return false;
-    out = frame.camera.backProject(pu, pv, z);
-    return true;
-  };
   Eigen::Vector3d left, right, above, below;
-  if (!point(u - baseline_px, v, left) || !point(u + baseline_px, v, right) || !point(u, v - baseline_px, above) ||
-      !point(u, v + baseline_px, below))
+  if (!pointAt(frame, u - baseline_px, v, left) || !pointAt(frame, u + baseline_px, v, right) ||
+      !pointAt(frame, u, v - baseline_px, above) || !pointAt(frame, u, v + baseline_px, below))
     return false;
   if ((0.5 * (left + right) - point_m).norm() > params.max_bend_m ||
       (0.5 * (above + below) - point_m).norm() > params.max_bend_m)
@@ -55,9 +58,8 @@ std::vector<double> lowerRingHeights(const RgbdFrame& frame, const cv::Mat& mask
     {
       if (!on_ring[x]) continue;
       const int u = ring.box_px.x + x, v = ring.box_px.y + y;
-      const float z = frame.depthAt(u, v);
-      if (!(z > 0.0f)) continue;
-      const Eigen::Vector3d point = frame.camera.backProject(u, v, z);
+      Eigen::Vector3d point;
+      if (!pointAt(frame, u, v, point)) continue;
       // A side face below the face's edge (its own, seen obliquely, or a
       // lower neighbour's) has pixels at every height down it, densest just
       // where the ring crosses it: only level surfaces are places to stand.
