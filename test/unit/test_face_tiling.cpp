@@ -4,11 +4,14 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
 #include "brick_pose/common/errors.h"
+#include "brick_pose/eval/candidate_matching.h"
+#include "brick_pose/eval/rig_truth.h"
 #include "brick_pose/pipeline/front_end.h"
 #include "brick_pose/roi/cell_counts.h"
 #include "brick_pose/roi/face_tiling.h"
@@ -273,6 +276,81 @@ TEST(FaceTiling, ColourFreeTwoRedsEndToEndWithASeamAreNotOneGreen)
   const FrontEndResult plain = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(scene.frame());
   ASSERT_EQ(plain.candidates.size(), 1u);
   EXPECT_EQ(plain.candidates[0].type_name, "green");
+}
+
+/// A white label with a barcode painted over the layer-frame rectangle
+/// [min_m, max_m] of `scene` in `frame`'s colour image (print: the depth
+/// does not see it).
+void paintLabel(RgbdFrame& frame, const test::TouchingPlatesScene& scene, const Eigen::Vector2d& min_m,
+                const Eigen::Vector2d& max_m)
+{
+  auto pixel = [&](double x_m, double y_m) {
+    const Eigen::Vector2d uv = scene.camera.project(scene.toCamera(x_m, y_m));
+    return cv::Point(static_cast<int>(std::lround(uv.x())), static_cast<int>(std::lround(uv.y())));
+  };
+  auto fill = [&](double x0, double y0, double x1, double y1, const cv::Scalar& colour) {
+    const std::vector<cv::Point> corners{pixel(x0, y0), pixel(x1, y0), pixel(x1, y1), pixel(x0, y1)};
+    cv::fillConvexPoly(frame.rgb, corners, colour);
+  };
+  fill(min_m.x(), min_m.y(), max_m.x(), max_m.y(), cv::Scalar(235, 235, 235));
+  // Bars 4 mm wide every 8 mm across the label's middle third.
+  const double y0 = min_m.y() + (max_m.y() - min_m.y()) / 3.0, y1 = max_m.y() - (max_m.y() - min_m.y()) / 3.0;
+  for (double x = min_m.x() + 0.01; x + 0.004 < max_m.x() - 0.01; x += 0.008) fill(x, y0, x + 0.004, y1, cv::Scalar(30, 30, 30));
+}
+
+TEST(FaceTiling, ColourFreeLabelledRedsEndToEndAreCutWhereTheCardboardAroundTheirSeamIsPlain)
+{
+  // Two reds end to end make a green's top, their seam a clear line with no
+  // groove (a closed seam the D4xx smooths). Each carries a label, so
+  // neither is plain: a line on a printed face may be print. But the face
+  // around the line, 5 cm either side, is plain: the line is no print, and
+  // the face is two reds.
+  test::TouchingPlatesScene scene = rowScene(1, 0.6, 0.2);
+  scene.plates = {{{-0.3, -0.1}, {0.0, 0.1}, {140, 120, 90}}, {{0.0, -0.1}, {0.3, 0.1}, {140, 120, 90}}};
+  scene.line_darkening = 50.0;
+  const FrontEndParams params = colourFreeParams();
+  RgbdFrame frame = scene.frame();
+  paintLabel(frame, scene, {-0.24, -0.06}, {-0.12, 0.06});
+  paintLabel(frame, scene, {0.12, -0.06}, {0.24, 0.06});
+  const FrontEndResult labelled = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(frame);
+  ASSERT_EQ(labelled.candidates.size(), 2u);
+  for (const BrickCandidate& c : labelled.candidates)
+  {
+    EXPECT_EQ(c.type_name, "red");
+    EXPECT_NEAR(c.length_m, 0.3, 0.02);
+  }
+  // A label 2 cm from the line: the line may be print, and the face stays one
+  // green in doubt.
+  RgbdFrame near_line = scene.frame();
+  paintLabel(near_line, scene, {-0.24, -0.06}, {-0.12, 0.06});
+  paintLabel(near_line, scene, {0.02, -0.06}, {0.14, 0.06});
+  const FrontEndResult doubted = FrontEnd(BrickCatalogue::mbzirc2020(), params).process(near_line);
+  ASSERT_EQ(doubted.candidates.size(), 1u);
+  EXPECT_EQ(doubted.candidates[0].type_name, "green");
+  EXPECT_FALSE(doubted.candidates[0].complete);
+}
+
+TEST(FaceTiling, TwoLabelledBoxesSideBySideOnAStackAreNotOneLargeBox)
+{
+  // Pallet stack 169 at 640x480: two box_small side by side on a stack,
+  // 0.40 x 0.30 m together (a box_large's top), both labelled, their seam a
+  // clear line through plain cardboard. They were one box_large in doubt,
+  // "mixed" over the two; now each is found whole as a box_small.
+  const BrickCatalogue boxes = BrickCatalogue::fromYamlFile(BRICK_POSE_SOURCE_DIR "/config/boxes.yaml");
+  const test::BenchFrameRun run = test::runBenchFrame(boxes, test::kPalletStackClass, 169, "640x480");
+  const eval::SceneTruth truth = eval::rigSceneTruth(run.rendered, run.up_in_camera);
+  const eval::FrameMatch match = eval::matchCandidates(run.result.candidates, truth, run.rendered.camera);
+  int mixed_large = 0, small_tops = 0;
+  for (std::size_t c = 0; c < match.candidates.size(); ++c)
+  {
+    const eval::CandidateMatch& candidate_match = match.candidates[c];
+    EXPECT_FALSE(candidate_match.false_complete);
+    const std::string& type = run.result.candidates[c].type_name;
+    mixed_large += type == "box_large" && candidate_match.outcome == eval::CandidateOutcome::kMixed ? 1 : 0;
+    small_tops += type == "box_small" && candidate_match.outcome == eval::CandidateOutcome::kWholeTop ? 1 : 0;
+  }
+  EXPECT_EQ(mixed_large, 0);
+  EXPECT_GE(small_tops, 2);
 }
 
 TEST(FaceTiling, ColourFreeGreenSizedFaceWithAFaintLineWhereTwoRedsWouldMeetIsPartial)

@@ -81,6 +81,66 @@ std::vector<char> plainTiles(const RgbdFrame& frame, const ColourUniformity& fac
   return plain;
 }
 
+/// Either side of a cut, the band whose colour says whether its line is
+/// print (m on the face, the line itself left out): a label or a tape
+/// stripe that draws a line also marks the cardboard beside it.
+constexpr double kCutBandM = 0.05;
+/// The line's own pixels left out of the band (px either side): the seam's
+/// shading, the colour's 1-2 px misregistration and the tiler's cut a
+/// pixel or two off the line.
+constexpr int kCutLineHalfPx = 4;
+/// A band narrower than this (px either side) holds too few blocks to read.
+constexpr int kMinCutBandPx = 14;
+
+/// Whether the face around each cut of `tile` is plain (see
+/// colour_uniformity.h) within kCutBandM of it: a clear line along a cut
+/// there is no print, whatever print lies further off on the tiles.
+bool cutsInPlainBands(const RgbdFrame& frame, const Segment& face, const FaceTile& tile,
+                      const ColourUniformityParams& params)
+{
+  const cv::Rect& box = face.bounding_box_px;
+  // The face's rim is left out as measureColourUniformity leaves it out; the
+  // band's own sides are not (a band a few blocks wide, seen at a slant,
+  // would keep no whole block).
+  cv::Mat inner_face;
+  const int rim_px = std::max(0, params.rim_px);
+  cv::erode(face.mask, inner_face, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * rim_px + 1, 2 * rim_px + 1)),
+            cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  ColourUniformityParams band_params = params;
+  band_params.rim_px = 0;
+  bool any_cut = false;
+  for (int k = 0; k < 4; ++k)
+  {
+    if (!tile.cut[k]) continue;
+    any_cut = true;
+    const Eigen::Vector3d& a_m = tile.corners_m[k];
+    const Eigen::Vector3d& b_m = tile.corners_m[(k + 1) % 4];
+    const double depth_m = 0.5 * (a_m.z() + b_m.z());
+    if (!(depth_m > 0.0)) return false;
+    const int band_px =
+        std::max(kMinCutBandPx, static_cast<int>(std::lround(kCutBandM * frame.camera.fx_px / depth_m)));
+    const Eigen::Vector2d a = frame.camera.project(a_m), b = frame.camera.project(b_m);
+    const cv::Point a_px(static_cast<int>(std::lround(a.x())) - box.x, static_cast<int>(std::lround(a.y())) - box.y);
+    const cv::Point b_px(static_cast<int>(std::lround(b.x())) - box.x, static_cast<int>(std::lround(b.y())) - box.y);
+    cv::Mat band = cv::Mat::zeros(box.size(), CV_8UC1);
+    cv::line(band, a_px, b_px, cv::Scalar(255), 2 * band_px + 1);
+    cv::line(band, a_px, b_px, cv::Scalar(0), 2 * kCutLineHalfPx + 1);
+    band &= inner_face;
+    if (!measureColourUniformity(frame, band, box, band_params).uniform) return false;
+  }
+  return any_cut;
+}
+
+/// Whether every edge of `face` is seen in depth (a step, a crease, a
+/// groove, a wall's foot): on such a face the only lines a tiling can cut
+/// along are its cuts.
+bool edgesSeenInDepth(const BrickCandidate& face)
+{
+  return std::all_of(face.edge_kinds.begin(), face.edge_kinds.end(), [](EdgeKind kind) {
+    return kind != EdgeKind::kSizePlacedLine && isRealEdge(kind, false);
+  });
+}
+
 /// The first edge of `tile` cut through its segment without a seam seen
 /// along it, or -1.
 int firstUnseenCut(const FaceTile& tile)
@@ -453,9 +513,17 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
                           (!seams_required || tiling.weakest_cut_line >= clear_line);
   if (seams_required && !cuts_grooved && !cuts_lined) return std::nullopt;
   // Read only where it can decide something (it reads every tile).
-  const std::vector<char> plain = typed_by_size && (!seams_required || !cuts_grooved)
-                                      ? plainTiles(frame, face_uniformity, tiling, params_.uniformity)
-                                      : std::vector<char>(tiling.tiles.size(), 0);
+  std::vector<char> plain = typed_by_size && (!seams_required || !cuts_grooved)
+                                ? plainTiles(frame, face_uniformity, tiling, params_.uniformity)
+                                : std::vector<char>(tiling.tiles.size(), 0);
+  // A face of one brick's size whose every edge is seen in depth, crossed by
+  // a clear line along each cut: a printed tile is read as plain where the
+  // cardboard along its cuts is (the line is then no print, and its edges
+  // but the cuts are no lines at all). Two boxes side by side on a stack,
+  // each with its label, are a box_large's size.
+  if (seams_required && !cuts_grooved && cuts_lined && edgesSeenInDepth(measured))
+    for (std::size_t k = 0; k < plain.size(); ++k)
+      if (!plain[k]) plain[k] = cutsInPlainBands(frame, segment, tiling.tiles[k], params_.uniformity) ? 1 : 0;
   const bool all_plain = std::all_of(plain.begin(), plain.end(), [](char p) { return p != 0; });
   if (seams_required && !cuts_grooved && !all_plain) return std::nullopt;
   // Each tile in its own slots, whichever thread measures it; gathered in
