@@ -92,22 +92,28 @@ constexpr int kCutLineHalfPx = 4;
 /// A band narrower than this (px either side) holds too few blocks to read.
 constexpr int kMinCutBandPx = 14;
 
-/// Whether the face around each cut of `tile` is plain (see
-/// colour_uniformity.h) within kCutBandM of it: a clear line along a cut
-/// there is no print, whatever print lies further off on the tiles.
-bool cutsInPlainBands(const RgbdFrame& frame, const Segment& face, const FaceTile& tile,
+/// `face`'s mask without its rim, as measureColourUniformity leaves it out
+/// (the bands cut from it keep their own sides: a band a few blocks wide,
+/// seen at a slant, would keep no whole block).
+cv::Mat innerMask(const Segment& face, const ColourUniformityParams& params)
+{
+  cv::Mat inner;
+  const int rim_px = std::max(0, params.rim_px);
+  cv::erode(face.mask, inner, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * rim_px + 1, 2 * rim_px + 1)),
+            cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  return inner;
+}
+
+/// Whether the face (`inner_face`, innerMask of `face`) around each cut of
+/// `tile` is plain (see colour_uniformity.h) within kCutBandM of it: a
+/// clear line along a cut there is no print, whatever print lies further
+/// off on the tiles.
+bool cutsInPlainBands(const RgbdFrame& frame, const Segment& face, const cv::Mat& inner_face, const FaceTile& tile,
                       const ColourUniformityParams& params)
 {
   const cv::Rect& box = face.bounding_box_px;
-  // The face's rim is left out as measureColourUniformity leaves it out; the
-  // band's own sides are not (a band a few blocks wide, seen at a slant,
-  // would keep no whole block).
-  cv::Mat inner_face;
-  const int rim_px = std::max(0, params.rim_px);
-  cv::erode(face.mask, inner_face, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * rim_px + 1, 2 * rim_px + 1)),
-            cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
   ColourUniformityParams band_params = params;
-  band_params.rim_px = 0;
+  band_params.rim_px = 0;  // left out of inner_face already
   bool any_cut = false;
   for (int k = 0; k < 4; ++k)
   {
@@ -522,8 +528,11 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   // but the cuts are no lines at all). Two boxes side by side on a stack,
   // each with its label, are a box_large's size.
   if (seams_required && !cuts_grooved && cuts_lined && edgesSeenInDepth(measured))
+  {
+    const cv::Mat inner_face = innerMask(segment, params_.uniformity);
     for (std::size_t k = 0; k < plain.size(); ++k)
-      if (!plain[k]) plain[k] = cutsInPlainBands(frame, segment, tiling.tiles[k], params_.uniformity) ? 1 : 0;
+      if (!plain[k]) plain[k] = cutsInPlainBands(frame, segment, inner_face, tiling.tiles[k], params_.uniformity);
+  }
   const bool all_plain = std::all_of(plain.begin(), plain.end(), [](char p) { return p != 0; });
   if (seams_required && !cuts_grooved && !all_plain) return std::nullopt;
   // Each tile in its own slots, whichever thread measures it; gathered in
