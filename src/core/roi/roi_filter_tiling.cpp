@@ -522,11 +522,11 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   std::vector<char> plain = typed_by_size && (!seams_required || !cuts_grooved)
                                 ? plainTiles(frame, face_uniformity, tiling, params_.uniformity)
                                 : std::vector<char>(tiling.tiles.size(), 0);
-  // A face of one brick's size whose every edge is seen in depth, crossed by
-  // a clear line along each cut: a printed tile is read as plain where the
-  // cardboard along its cuts is (the line is then no print, and its edges
-  // but the cuts are no lines at all). Two boxes side by side on a stack,
-  // each with its label, are a box_large's size.
+  // A face of one brick's size whose edges are all seen in depth has no
+  // lines but its cuts. Where each cut is clearly lined, a printed tile
+  // counts as plain when the cardboard along its cuts is: the line is then
+  // no print. (Two labelled box_small side by side on a stack make a
+  // box_large's top.)
   if (seams_required && !cuts_grooved && cuts_lined && edgesSeenInDepth(measured))
   {
     const cv::Mat inner_face = innerMask(segment, params_.uniformity);
