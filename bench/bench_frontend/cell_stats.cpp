@@ -26,7 +26,9 @@ void append(std::vector<double>& to, const std::vector<double>& from) { to.inser
 /// number, as the earlier benchmark named misses): of those whose box holds
 /// a third of the top, the one whose box is most of that top (the tile cut
 /// from a split segment, not the whole segment or a neighbour's part).
-/// A top found with its type left open is named so.
+/// A top found with its type left open is named so, and one whose pixels
+/// a candidate holds half of is under that candidate (a box merged with its
+/// neighbour: a rejected side face beside it has a box over it too).
 std::string missReason(const FrontEndResult& result, const eval::SceneTruth& truth, const eval::TopMatch& match,
                        bool verbose, const std::string& frame_name)
 {
@@ -43,6 +45,20 @@ std::string missReason(const FrontEndResult& result, const eval::SceneTruth& tru
     share = samples > 0 ? static_cast<double>(inside) / samples : 0.0;
     return inside * 4 > top.visible_px / 3;
   };
+  // Half the top's pixels in a candidate's own.
+  auto pixelsHeldBy = [&](const BrickCandidate& c) {
+    const cv::Rect box = c.bounding_box_px & cv::Rect(0, 0, truth.face_index.cols, truth.face_index.rows);
+    if (c.mask.empty() || box != c.bounding_box_px) return false;
+    int inside = 0;
+    for (int v = 0; v < box.height; ++v)
+    {
+      const unsigned char* mask_row = c.mask.ptr<unsigned char>(v);
+      const int* face_row = truth.face_index.ptr<int>(box.y + v) + box.x;
+      for (int u = 0; u < box.width; ++u) inside += mask_row[u] && face_row[u] == face ? 1 : 0;
+    }
+    return inside * 2 >= top.visible_px;
+  };
+  const bool held_by_a_candidate = std::any_of(result.candidates.begin(), result.candidates.end(), pixelsHeldBy);
   const Rejection* named = nullptr;
   double named_share = 0.0;
   for (const Rejection& rejection : result.rejections)
@@ -59,6 +75,7 @@ std::string missReason(const FrontEndResult& result, const eval::SceneTruth& tru
     });
   };
   const std::string reason = match.found_type_left_open ? kTypeLeftOpen
+                             : held_by_a_candidate      ? kUnderACandidate
                              : named                    ? named->reason
                              : underACandidate()        ? kUnderACandidate
                                                         : "no segment";
