@@ -191,6 +191,10 @@ void recordFrame(const FrontEndResult& result, double cpu_ms, const eval::SceneT
       continue;
     }
     const eval::FaceTruth& face = truth.faces[static_cast<std::size_t>(candidate_match.face)];
+    // A whole top found but not pickable: why it stays in doubt.
+    if (verbose && !candidate.complete && candidate_match.outcome == eval::CandidateOutcome::kWholeTop)
+      std::fprintf(stderr, "%s: whole top found partial: %s: %s\n", frame_name.c_str(), candidate.type_name.c_str(),
+                   candidate.partial_reason.c_str());
     if (candidate.complete && candidate_match.outcome == eval::CandidateOutcome::kWholeTop &&
         candidate_match.has_errors)
     {
