@@ -47,6 +47,11 @@ struct ColourUniformity
   bool uniform = false;           ///< Enough samples, a small scatter and few outliers.
 };
 
+/// `mask` (CV_8UC1) without its rim: the pixels `rim_px` or more inside it
+/// (outside the mask's box counts as outside). measureColourUniformity reads
+/// only these (params.rim_px).
+cv::Mat withoutRim(const cv::Mat& mask, int rim_px);
+
 /// The colour uniformity of the pixels of `mask` (CV_8UC1, non-zero inside)
 /// placed at `box` in `frame`.
 ColourUniformity measureColourUniformity(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box,

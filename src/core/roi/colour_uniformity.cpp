@@ -50,16 +50,22 @@ double blockGrey(const cv::Mat& rgb, const cv::Rect& block)
 }
 }  // namespace
 
+cv::Mat withoutRim(const cv::Mat& mask, int rim_px)
+{
+  cv::Mat inner;
+  const int rim = std::max(0, rim_px);
+  // Outside the mask's box is outside the face: the border erodes too.
+  cv::erode(mask, inner, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * rim + 1, 2 * rim + 1)),
+            cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  return inner;
+}
+
 ColourUniformity measureColourUniformity(const RgbdFrame& frame, const cv::Mat& mask, const cv::Rect& box,
                                          const ColourUniformityParams& params)
 {
   ColourUniformity result;
   if (mask.empty() || box.area() == 0) return result;
-  cv::Mat inner;
-  const int rim = std::max(0, params.rim_px);
-  // Outside the mask's box is outside the face: the border erodes too.
-  cv::erode(mask, inner, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * rim + 1, 2 * rim + 1)),
-            cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  const cv::Mat inner = withoutRim(mask, params.rim_px);
   const int block = std::max(1, params.block_px);
   const int blocks_u = inner.cols / block, blocks_v = inner.rows / block;
   if (blocks_u == 0 || blocks_v == 0) return result;

@@ -14,6 +14,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "brick_pose/common/parallel_for.h"
+#include "brick_pose/common/rounding.h"
 #include "brick_pose/roi/colour_uniformity.h"
 #include "brick_pose/roi/foot_levels.h"
 #include "brick_pose/roi/raised_layer.h"
@@ -92,22 +93,12 @@ constexpr int kCutLineHalfPx = 4;
 /// A band narrower than this (px either side) holds too few blocks to read.
 constexpr int kMinCutBandPx = 14;
 
-/// `face`'s mask without its rim, as measureColourUniformity leaves it out
-/// (the bands cut from it keep their own sides: a band a few blocks wide,
-/// seen at a slant, would keep no whole block).
-cv::Mat innerMask(const Segment& face, const ColourUniformityParams& params)
-{
-  cv::Mat inner;
-  const int rim_px = std::max(0, params.rim_px);
-  cv::erode(face.mask, inner, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * rim_px + 1, 2 * rim_px + 1)),
-            cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
-  return inner;
-}
-
-/// Whether the face (`inner_face`, innerMask of `face`) around each cut of
-/// `tile` is plain (see colour_uniformity.h) within kCutBandM of it: a
-/// clear line along a cut there is no print, whatever print lies further
-/// off on the tiles.
+/// Whether the face (`inner_face`: `face`'s mask withoutRim, as
+/// measureColourUniformity reads a face; the bands cut from it keep their
+/// own sides, since a band a few blocks wide seen at a slant would keep no
+/// whole block) around each cut of `tile` is plain (see
+/// colour_uniformity.h) within kCutBandM of it: a clear line along a cut
+/// there is no print, whatever print lies further off on the tiles.
 bool cutsInPlainBands(const RgbdFrame& frame, const Segment& face, const cv::Mat& inner_face, const FaceTile& tile,
                       const ColourUniformityParams& params)
 {
@@ -124,10 +115,10 @@ bool cutsInPlainBands(const RgbdFrame& frame, const Segment& face, const cv::Mat
     const double depth_m = 0.5 * (a_m.z() + b_m.z());
     if (!(depth_m > 0.0)) return false;
     const int band_px =
-        std::max(kMinCutBandPx, static_cast<int>(std::lround(kCutBandM * frame.camera.fx_px / depth_m)));
+        std::max(kMinCutBandPx, roundToInt(kCutBandM * frame.camera.fx_px / depth_m));
     const Eigen::Vector2d a = frame.camera.project(a_m), b = frame.camera.project(b_m);
-    const cv::Point a_px(static_cast<int>(std::lround(a.x())) - box.x, static_cast<int>(std::lround(a.y())) - box.y);
-    const cv::Point b_px(static_cast<int>(std::lround(b.x())) - box.x, static_cast<int>(std::lround(b.y())) - box.y);
+    const cv::Point a_px(roundToInt(a.x()) - box.x, roundToInt(a.y()) - box.y);
+    const cv::Point b_px(roundToInt(b.x()) - box.x, roundToInt(b.y()) - box.y);
     cv::Mat band = cv::Mat::zeros(box.size(), CV_8UC1);
     cv::line(band, a_px, b_px, cv::Scalar(255), 2 * band_px + 1);
     cv::line(band, a_px, b_px, cv::Scalar(0), 2 * kCutLineHalfPx + 1);
@@ -529,7 +520,7 @@ std::optional<RoiOutcome> RoiFilter::tile(const RgbdFrame& frame, const Segment&
   // box_large's top.)
   if (seams_required && !cuts_grooved && cuts_lined && edgesSeenInDepth(measured))
   {
-    const cv::Mat inner_face = innerMask(segment, params_.uniformity);
+    const cv::Mat inner_face = withoutRim(segment.mask, params_.uniformity.rim_px);
     for (std::size_t k = 0; k < plain.size(); ++k)
       if (!plain[k]) plain[k] = cutsInPlainBands(frame, segment, inner_face, tiling.tiles[k], params_.uniformity);
   }
