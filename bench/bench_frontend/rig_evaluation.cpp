@@ -133,6 +133,7 @@ RigResults runRig(const std::vector<BrickCatalogue>& catalogues, const std::vect
         const double cpu_start = bench::processCpuMs();
         const FrontEndResult result = front_end.process(frame);
         const double cpu_ms = bench::processCpuMs() - cpu_start;
+        for (int extra = 0; extra < options.repeat; ++extra) front_end.process(frame);
         const eval::SceneTruth truth = eval::rigSceneTruth(rendered.synthetic, rendered.up_in_camera);
         const CellKey key{spec.scene_class, m, r};
         const std::string name = classes[spec.scene_class].rig_kind + " frame " + std::to_string(i) + " " +

@@ -72,6 +72,7 @@ Options parseOptions(int argc, char** argv)
     else if (arg == "--no-rig") options.skip_rig = true;
     else if (arg == "--verbose") options.verbose = true;
     else if (arg == "--measured-corners") options.measured_corners = true;
+    else if (arg == "--repeat" && has_value) options.repeat = std::max(0, std::atoi(argv[++i]));
     else if (arg == "--overlay-dir" && has_value) options.overlay_dir = argv[++i];
     else if (arg == "--only" && i + 3 < argc)
     {
@@ -83,7 +84,7 @@ Options parseOptions(int argc, char** argv)
     {
       std::cerr << "usage: bench_frontend [--frames N] [--seed S] [--mosd DIR] [--mosd-catalogue FILE] [--box-catalogue FILE] "
                    "[--no-mosd] "
-                   "[--no-rig] [--verbose] [--measured-corners] [--overlay-dir DIR] [--only KINDS MODES RESOLUTIONS]\n";
+                   "[--no-rig] [--verbose] [--measured-corners] [--repeat N] [--overlay-dir DIR] [--only KINDS MODES RESOLUTIONS]\n";
       std::exit(arg == "--help" || arg == "-h" ? 0 : 2);
     }
   }

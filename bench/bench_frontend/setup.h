@@ -39,6 +39,11 @@ struct Options
   /// Complete faces keep the corners they were measured with
   /// (RoiFilterParams::place_on_catalogue_size off), to compare.
   bool measured_corners = false;
+  /// For profiling: each rig frame's front end runs this many times more
+  /// after the measured run, its answers unused, so that a profile of the
+  /// run is mostly the front end rather than the rig's rendering. The
+  /// tables are the measured runs' alone.
+  int repeat = 0;
   /// Non-empty: writes <scene>_<mode>.png match overlays of the mOSD rows
   /// there, and with --only one per rig frame run.
   std::string overlay_dir;
