@@ -22,6 +22,7 @@ public:
               const cv::Mat& excluded, const PlaneRefinementParams& params)
     : frame_(frame),
       excluded_(excluded),
+      has_excluded_(!excluded.empty()),
       x_over_z_(rays.x_over_z.begin(), rays.x_over_z.end()),
       y_over_z_(rays.y_over_z.begin(), rays.y_over_z.end()),
       sigma_at_1m_(static_cast<float>(noise.sigma_at_1m_m)),
@@ -39,7 +40,7 @@ public:
   float depth(int u, int v) const
   {
     const float z = frame_.depth_m.ptr<float>(v)[u];
-    if (!(z > 0.0f) || (!excluded_.empty() && excluded_.ptr<std::uint8_t>(v)[u])) return 0.0f;
+    if (!(z > 0.0f) || (has_excluded_ && excluded_.ptr<std::uint8_t>(v)[u])) return 0.0f;
     return z;
   }
 
@@ -49,12 +50,6 @@ public:
     const Plane& p = planes_[plane];
     distance = std::abs(z * (p.nx * x_over_z_[u] + p.ny * y_over_z_[v] + p.nz) + p.d);
     return distance <= tolerance(z);
-  }
-
-  float distance(int plane, int u, int v, float z) const
-  {
-    const Plane& p = planes_[plane];
-    return std::abs(z * (p.nx * x_over_z_[u] + p.ny * y_over_z_[v] + p.nz) + p.d);
   }
 
   float tolerance(float z) const { return sigma_factor_ * std::max(sigma_at_1m_ * z * z, sigma_floor_) + floor_; }
@@ -68,15 +63,26 @@ public:
   {
     const int u0 = std::max(0, u - radius), u1 = std::min(frame_.depth_m.cols - 1, u + radius);
     const int v0 = std::max(0, v - radius), v1 = std::min(frame_.depth_m.rows - 1, v + radius);
+    // Every contested pixel of a border reads a window: the row's pointers
+    // are read once a row (the arithmetic is distance()'s, term for term).
+    const Plane& plane_a = planes_[a];
+    const Plane& plane_b = planes_[b];
     float sum = 0.0f;
     for (int y = v0; y <= v1; ++y)
+    {
+      const float* depth_row = frame_.depth_m.ptr<float>(y);
+      const std::uint8_t* skip = has_excluded_ ? excluded_.ptr<std::uint8_t>(y) : nullptr;
+      const float y_over_z = y_over_z_[y];
       for (int x = u0; x <= u1; ++x)
       {
-        const float z = depth(x, y);
-        if (z == 0.0f) continue;
-        const float d_a = distance(a, x, y, z), d_b = distance(b, x, y, z);
+        const float z = depth_row[x];
+        if (!(z > 0.0f) || (skip && skip[x])) continue;
+        const float x_over_z = x_over_z_[x];
+        const float d_a = std::abs(z * (plane_a.nx * x_over_z + plane_a.ny * y_over_z + plane_a.nz) + plane_a.d);
+        const float d_b = std::abs(z * (plane_b.nx * x_over_z + plane_b.ny * y_over_z + plane_b.nz) + plane_b.d);
         if (std::min(d_a, d_b) <= tolerance(z)) sum += d_a - d_b;
       }
+    }
     return sum < 0.0f;
   }
 
@@ -88,7 +94,7 @@ public:
     for (int v = box.y; v < box.br().y; ++v)
     {
       const float* depth_row = frame_.depth_m.ptr<float>(v);
-      const std::uint8_t* skip = excluded_.empty() ? nullptr : excluded_.ptr<std::uint8_t>(v);
+      const std::uint8_t* skip = has_excluded_ ? excluded_.ptr<std::uint8_t>(v) : nullptr;
       int* label_row = labels.ptr<int>(v);
       const float row_term = p.ny * y_over_z_[v] + p.nz;
       for (int u = box.x; u < box.br().x; ++u)
@@ -108,6 +114,8 @@ private:
 
   const RgbdFrame& frame_;
   const cv::Mat& excluded_;
+  /// cv::Mat::empty() is a call into the library: asked once, not per pixel.
+  const bool has_excluded_;
   std::vector<Plane> planes_;
   std::vector<float> x_over_z_, y_over_z_;
   float sigma_at_1m_, sigma_floor_, sigma_factor_, floor_;
