@@ -379,8 +379,8 @@ LineEvidence PlaneGrid::lineEvidence(const PlanePixelSamples& pixels, bool const
   // sigma has a floor (a quarter of the smallest seam) for noise-free input.
   for (int channel = 0; channel < 2; ++channel)
   {
-    const std::vector<double> values = evenSample(raw[channel], kMaxMedianSamples);
-    const RobustSpread spread = values.empty() ? RobustSpread{} : robustSpread(values);
+    std::vector<double> values = evenSample(raw[channel], kMaxMedianSamples);
+    const RobustSpread spread = values.empty() ? RobustSpread{} : robustSpread(std::move(values));
     const double centre = spread.centre;
     const double sigma = std::max(0.25 * sigma_floor[channel], spread.sigma);
     evidence.sigma[channel] = sigma;
