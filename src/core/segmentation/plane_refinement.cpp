@@ -47,8 +47,7 @@ public:
   /// Whether the pixel lies on `plane` within the tolerance, and how far.
   bool onPlane(int plane, int u, int v, float z, float& distance) const
   {
-    const Plane& p = planes_[plane];
-    distance = std::abs(z * (p.nx * x_over_z_[u] + p.ny * y_over_z_[v] + p.nz) + p.d);
+    distance = distanceTo(planes_[plane], x_over_z_[u], y_over_z_[v], z);
     return distance <= tolerance(z);
   }
 
@@ -64,7 +63,7 @@ public:
     const int u0 = std::max(0, u - radius), u1 = std::min(frame_.depth_m.cols - 1, u + radius);
     const int v0 = std::max(0, v - radius), v1 = std::min(frame_.depth_m.rows - 1, v + radius);
     // Every contested pixel of a border reads a window: the row's pointers
-    // are read once a row (the arithmetic is distance()'s, term for term).
+    // are read once a row.
     const Plane& plane_a = planes_[a];
     const Plane& plane_b = planes_[b];
     float sum = 0.0f;
@@ -78,8 +77,8 @@ public:
         const float z = depth_row[x];
         if (!(z > 0.0f) || (skip && skip[x])) continue;
         const float x_over_z = x_over_z_[x];
-        const float d_a = std::abs(z * (plane_a.nx * x_over_z + plane_a.ny * y_over_z + plane_a.nz) + plane_a.d);
-        const float d_b = std::abs(z * (plane_b.nx * x_over_z + plane_b.ny * y_over_z + plane_b.nz) + plane_b.d);
+        const float d_a = distanceTo(plane_a, x_over_z, y_over_z, z);
+        const float d_b = distanceTo(plane_b, x_over_z, y_over_z, z);
         if (std::min(d_a, d_b) <= tolerance(z)) sum += d_a - d_b;
       }
     }
@@ -111,6 +110,12 @@ private:
   {
     float nx, ny, nz, d;
   };
+
+  /// Distance of the pixel with ray (x/z, y/z) at depth z from `plane`.
+  static float distanceTo(const Plane& plane, float x_over_z, float y_over_z, float z)
+  {
+    return std::abs(z * (plane.nx * x_over_z + plane.ny * y_over_z + plane.nz) + plane.d);
+  }
 
   const RgbdFrame& frame_;
   const cv::Mat& excluded_;
