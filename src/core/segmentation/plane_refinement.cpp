@@ -36,13 +36,27 @@ public:
                          static_cast<float>(plane.normal.z()), static_cast<float>(-plane.normal.dot(plane.centroid_m))});
   }
 
-  /// Depth usable for a plane: 0 when there is none or the pixel is excluded.
-  float depth(int u, int v) const
+  /// Row v of the depth and of the excluded mask (null without one), read
+  /// a row at a time by the loops over windows and cells.
+  struct DepthRow
   {
-    const float z = frame_.depth_m.ptr<float>(v)[u];
-    if (!(z > 0.0f) || (has_excluded_ && excluded_.ptr<std::uint8_t>(v)[u])) return 0.0f;
-    return z;
+    const float* depth_m;
+    const std::uint8_t* excluded;
+    /// Depth usable for a plane at column u: 0 when there is none or the
+    /// pixel is excluded.
+    float at(int u) const
+    {
+      const float z = depth_m[u];
+      return (z > 0.0f && !(excluded && excluded[u])) ? z : 0.0f;
+    }
+  };
+  DepthRow depthRow(int v) const
+  {
+    return {frame_.depth_m.ptr<float>(v), has_excluded_ ? excluded_.ptr<std::uint8_t>(v) : nullptr};
   }
+
+  /// Depth usable for a plane: 0 when there is none or the pixel is excluded.
+  float depth(int u, int v) const { return depthRow(v).at(u); }
 
   /// Whether the pixel lies on `plane` within the tolerance, and how far.
   bool onPlane(int plane, int u, int v, float z, float& distance) const
@@ -62,20 +76,19 @@ public:
   {
     const int u0 = std::max(0, u - radius), u1 = std::min(frame_.depth_m.cols - 1, u + radius);
     const int v0 = std::max(0, v - radius), v1 = std::min(frame_.depth_m.rows - 1, v + radius);
-    // Every contested pixel of a border reads a window: the row's pointers
-    // are read once a row.
+    // Every contested pixel of a border reads a window: its rows are looked
+    // up once each.
     const Plane& plane_a = planes_[a];
     const Plane& plane_b = planes_[b];
     float sum = 0.0f;
     for (int y = v0; y <= v1; ++y)
     {
-      const float* depth_row = frame_.depth_m.ptr<float>(y);
-      const std::uint8_t* skip = has_excluded_ ? excluded_.ptr<std::uint8_t>(y) : nullptr;
+      const DepthRow row = depthRow(y);
       const float y_over_z = y_over_z_[y];
       for (int x = u0; x <= u1; ++x)
       {
-        const float z = depth_row[x];
-        if (!(z > 0.0f) || (skip && skip[x])) continue;
+        const float z = row.at(x);
+        if (z == 0.0f) continue;
         const float x_over_z = x_over_z_[x];
         const float d_a = distanceTo(plane_a, x_over_z, y_over_z, z);
         const float d_b = distanceTo(plane_b, x_over_z, y_over_z, z);
@@ -92,14 +105,13 @@ public:
     const Plane& p = planes_[plane];
     for (int v = box.y; v < box.br().y; ++v)
     {
-      const float* depth_row = frame_.depth_m.ptr<float>(v);
-      const std::uint8_t* skip = has_excluded_ ? excluded_.ptr<std::uint8_t>(v) : nullptr;
+      const DepthRow row = depthRow(v);
       int* label_row = labels.ptr<int>(v);
       const float row_term = p.ny * y_over_z_[v] + p.nz;
       for (int u = box.x; u < box.br().x; ++u)
       {
-        const float z = depth_row[u];
-        if (!(z > 0.0f) || (skip && skip[u])) continue;
+        const float z = row.at(u);
+        if (z == 0.0f) continue;
         if (std::abs(z * (p.nx * x_over_z_[u] + row_term) + p.d) <= tolerance(z)) label_row[u] = plane;
       }
     }
