@@ -4,7 +4,7 @@
 //
 //   bench_frontend [--frames N] [--seed S] [--mosd DIR] [--mosd-catalogue FILE] [--box-catalogue FILE]
 //                  [--no-mosd] [--no-rig]
-//                  [--verbose] [--measured-corners] [--repeat N] [--overlay-dir DIR] [--only KINDS MODES RESOLUTIONS]
+//                  [--verbose] [--measured-corners] [--repeat N] [--overlay-dir DIR] [--only KINDS MODES RESOLUTIONS] [--frame N]
 //
 // First the earlier benchmark's block, figures unchanged in meaning: N
 // frames cycling through single bricks, organised and unorganised piles and

@@ -80,8 +80,17 @@ std::string missReason(const FrontEndResult& result, const eval::SceneTruth& tru
                              : underACandidate()        ? kUnderACandidate
                                                         : "no segment";
   if (verbose)
-    std::fprintf(stderr, "%s: miss %s%s vis %.2f: %s\n", frame_name.c_str(), whole ? "whole " : "", top.type.c_str(),
-                 top.visible_fraction, reason.c_str());
+  {
+    // Where the named rejection lies, to find it in an overlay.
+    const std::string where = named && reason == named->reason
+                                  ? " [rejected box " + std::to_string(named->bounding_box_px.x) + "," +
+                                        std::to_string(named->bounding_box_px.y) + " " +
+                                        std::to_string(named->bounding_box_px.width) + "x" +
+                                        std::to_string(named->bounding_box_px.height) + " px]"
+                                  : std::string();
+    std::fprintf(stderr, "%s: miss %s%s vis %.2f: %s%s\n", frame_name.c_str(), whole ? "whole " : "", top.type.c_str(),
+                 top.visible_fraction, reason.c_str(), where.c_str());
+  }
   return reason.substr(0, reason.find_first_of("0123456789"));
 }
 
@@ -158,6 +167,10 @@ void recordFrame(const FrontEndResult& result, double cpu_ms, const eval::SceneT
   stats.cloud_ms.push_back(result.timings.cloud.total());
   stats.roi_ms.push_back(result.timings.roi_ms);
   stats.cpu_ms.push_back(cpu_ms);
+  if (verbose)
+    std::fprintf(stderr, "%s: time ms total %.2f segmentation %.2f cloud %.2f roi %.2f cpu %.2f\n", frame_name.c_str(),
+                 result.timings.total_ms, result.timings.segmentation_ms, result.timings.cloud.total(),
+                 result.timings.roi_ms, cpu_ms);
 
   const eval::FrameMatch match = eval::matchCandidates(result.candidates, truth, camera, match_params);
   stats.tally.add(match, match_params.legacy_min_visible_fraction);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <optional>
 
@@ -69,6 +70,28 @@ RgbdFrame toRgbd(const RenderedFrame& frame, const PinholeCamera& camera, int in
   header.frame_id = "camera_color_optical_frame";
   return makeRgbdFrame(frame.synthetic.rgb, frame.synthetic.depth_mm, camera, header);
 }
+/// Depth as grey, near light, over the frame's own range (2nd to 98th
+/// percentile), holes red: steps and smoothing read by eye.
+cv::Mat drawDepth(const cv::Mat& depth_m)
+{
+  std::vector<float> values;
+  for (int v = 0; v < depth_m.rows; ++v)
+    for (int u = 0; u < depth_m.cols; ++u)
+      if (const float d = depth_m.at<float>(v, u); std::isfinite(d) && d > 0.0f) values.push_back(d);
+  cv::Mat picture(depth_m.size(), CV_8UC3, cv::Scalar(0, 0, 255));
+  if (values.empty()) return picture;
+  std::sort(values.begin(), values.end());
+  const float near_m = values[values.size() / 50], far_m = values[values.size() - 1 - values.size() / 50];
+  const float scale = 255.0f / std::max(1e-3f, far_m - near_m);
+  for (int v = 0; v < depth_m.rows; ++v)
+    for (int u = 0; u < depth_m.cols; ++u)
+      if (const float d = depth_m.at<float>(v, u); std::isfinite(d) && d > 0.0f)
+      {
+        const auto grey = static_cast<unsigned char>(std::clamp(255.0f - (d - near_m) * scale, 0.0f, 255.0f));
+        picture.at<cv::Vec3b>(v, u) = cv::Vec3b(grey, grey, grey);
+      }
+  return picture;
+}
 }  // namespace
 
 std::vector<BrickCatalogue> classCatalogues(const std::vector<SceneClass>& classes, const Options& options)
@@ -121,6 +144,7 @@ RigResults runRig(const std::vector<BrickCatalogue>& catalogues, const std::vect
         const FrameSpec& spec = plan[i];
         if (results.not_applicable.count({spec.scene_class, m})) continue;
         if (!allowedBy(options.only_kinds, classes[spec.scene_class].rig_kind)) continue;
+        if (options.only_frame >= 0 && static_cast<int>(i) != options.only_frame) continue;
         const RenderedFrame rendered = render(*generators[spec.scene_class], classes[spec.scene_class], spec, camera);
         const auto build_start = std::chrono::steady_clock::now();
         const RgbdFrame frame = toRgbd(rendered, camera, static_cast<int>(i));
@@ -156,6 +180,7 @@ RigResults runRig(const std::vector<BrickCatalogue>& catalogues, const std::vect
           cv::imwrite(options.overlay_dir + "/" + file + "_rgb.png", bgr);
           cv::imwrite(options.overlay_dir + "/" + file + "_segments.png",
                       drawSegments(front_end.segment(frame), frame.rgb.size()));
+          cv::imwrite(options.overlay_dir + "/" + file + "_depth.png", drawDepth(frame.depth_m));
         }
       }
     }

@@ -74,6 +74,7 @@ Options parseOptions(int argc, char** argv)
     else if (arg == "--measured-corners") options.measured_corners = true;
     else if (arg == "--repeat" && has_value) options.repeat = std::max(0, std::atoi(argv[++i]));
     else if (arg == "--overlay-dir" && has_value) options.overlay_dir = argv[++i];
+    else if (arg == "--frame" && has_value) options.only_frame = std::atoi(argv[++i]);
     else if (arg == "--only" && i + 3 < argc)
     {
       options.only_kinds = commaList(argv[++i]);
@@ -84,7 +85,7 @@ Options parseOptions(int argc, char** argv)
     {
       std::cerr << "usage: bench_frontend [--frames N] [--seed S] [--mosd DIR] [--mosd-catalogue FILE] [--box-catalogue FILE] "
                    "[--no-mosd] "
-                   "[--no-rig] [--verbose] [--measured-corners] [--repeat N] [--overlay-dir DIR] [--only KINDS MODES RESOLUTIONS]\n";
+                   "[--no-rig] [--verbose] [--measured-corners] [--repeat N] [--overlay-dir DIR] [--only KINDS MODES RESOLUTIONS] [--frame N]\n";
       std::exit(arg == "--help" || arg == "-h" ? 0 : 2);
     }
   }

@@ -52,6 +52,9 @@ struct Options
   /// full run's frame seeds and names, so a cell of the table is replayed
   /// alone. The tables then cover only what ran.
   std::vector<std::string> only_kinds, only_modes, only_resolutions;
+  /// Non-negative: only the rig frame of this number (the number in the
+  /// verbose lines' "frame N"), to profile or picture one frame.
+  int only_frame = -1;
 };
 
 /// Whether `name` is in `allowed` (an empty list allows every name).
