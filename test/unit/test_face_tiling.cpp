@@ -353,6 +353,17 @@ TEST(FaceTiling, TwoLabelledBoxesSideBySideOnAStackAreNotOneLargeBox)
   EXPECT_GE(small_tops, 2);
 }
 
+TEST(FaceTiling, TheBarsOfALabelAreNoSeam)
+{
+  // Pallet layer 148 at 1280x720, in a low light: a box_small was laid
+  // half a box off, across the seam of two boxes, its cut along the dark
+  // bars of a barcode (parallel to the box's edges); the two halves left
+  // could take no box. Bars on white paper are print: all 12 whole tops.
+  const test::WholeTops tops = test::palletLayerBenchFrame(148, "1280x720");
+  EXPECT_EQ(tops.whole, 12);
+  EXPECT_EQ(tops.found, tops.whole);
+}
+
 TEST(FaceTiling, ColourFreeGreenSizedFaceWithAFaintLineWhereTwoRedsWouldMeetIsPartial)
 {
   // A closed seam between two reds: no groove, and a line of 10 grey levels
@@ -1048,6 +1059,7 @@ TEST(PlanePixelSamples, ReadsEveryPixelAsComputedAndStoresOnlyThoseNearTheOutlin
     cv::fillConvexPoly(inside, polygon, cv::Scalar(255));
     const cv::Rect box = cv::boundingRect(polygon) & cv::Rect(0, 0, 640, 480);
     const auto box_area = static_cast<std::size_t>(box.area());
+    FaceColourSum on_face;  // the stored pixels within a centimetre of the plane
     for (int v = 0; v < 480; ++v)
       for (int u = 0; u < 640; ++u)
       {
@@ -1070,7 +1082,12 @@ TEST(PlanePixelSamples, ReadsEveryPixelAsComputedAndStoresOnlyThoseNearTheOutlin
         {
           ASSERT_TRUE(samples.stored(u, v)) << u << " " << v;
         }
+        if (samples.stored(u, v) && std::abs(offset_m) < kFaceColourOnPlaneM) on_face.add(rgb);
       }
+    // The face's mean grey (the print test's reference): its on-plane
+    // pixels' mean colour, in its own grey.
+    EXPECT_NEAR(samples.meanFaceGrey(), samples.faceGrey()(on_face.mean()), 1e-9);
+    EXPECT_GT(samples.meanFaceGrey(), 0.0);
     if (&outline != &outlines.front()) continue;
     // Nothing stored far from the askew face: not a corner of its image
     // box, and well under the box's area.

@@ -63,7 +63,9 @@ public:
     ++count_;
   }
   /// The face's grey: equal weights when no pixel was added.
-  FaceGrey grey() const { return count_ == 0 ? FaceGrey() : FaceGrey::ofColour(sum_ / static_cast<double>(count_)); }
+  FaceGrey grey() const { return count_ == 0 ? FaceGrey() : FaceGrey::ofColour(mean()); }
+  /// The mean colour (BGR grey levels); black when no pixel was added.
+  cv::Vec3d mean() const { return count_ == 0 ? cv::Vec3d(0.0, 0.0, 0.0) : sum_ / static_cast<double>(count_); }
 
 private:
   cv::Vec3d sum_{0.0, 0.0, 0.0};

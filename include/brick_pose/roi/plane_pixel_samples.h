@@ -58,6 +58,9 @@ public:
   std::size_t storedCount() const { return offset_m_.size(); }
   /// The weighting grey levels are read in.
   const FaceGrey& faceGrey() const { return face_grey_; }
+  /// The mean grey level of the computed pixels within a centimetre of the
+  /// plane (the face's own mean colour in its grey); 0 without such pixels.
+  double meanFaceGrey() const { return mean_face_grey_; }
 
 private:
   /// Row v's stored pixels: u in [u_begin, u_end), from offset_m_[first] on.
@@ -88,5 +91,6 @@ private:
   std::vector<double> offset_m_;
   std::vector<float> grey_;
   FaceGrey face_grey_;
+  double mean_face_grey_ = 0.0;
 };
 }  // namespace brick_pose

@@ -75,6 +75,13 @@ std::vector<double> evenSample(const std::vector<float>& values, std::size_t max
 /// Values in the line evidence's location and scale estimates (see evenSample).
 constexpr std::size_t kMaxMedianSamples = 8192;
 
+/// A dark line with a side brighter than this many times the face's mean
+/// grey is print, not a seam: a seam runs between two faces' own colour,
+/// while the bars and text of a label lie on white paper (about 1.5 times
+/// kraft cardboard's grey in any light), parallel to the box's edges, and
+/// their lines, averaged along a cut, passed for a seam half a box off.
+constexpr double kPrintSideGrey = 1.3;
+
 /// Seam dips sampled along the lines of one direction of the grid. Line `l`
 /// (0..lines-1) has `length` samples; integral images over lines and
 /// positions give the mean over any stretch of one line, or of a band of
@@ -325,6 +332,8 @@ LineEvidence PlaneGrid::lineEvidence(const PlanePixelSamples& pixels, bool const
   evidence.length = constant_s ? ny_ : nx_;
   const int width = frame_.width_px(), height = frame_.height_px();
   const int half_window = halfWindowPx();
+  const double print_side_grey = pixels.meanFaceGrey() > 0.0 ? kPrintSideGrey * pixels.meanFaceGrey()
+                                                              : std::numeric_limits<double>::infinity();
   std::array<std::vector<float>, 2> raw;
   for (auto& channel : raw)
     channel.assign(static_cast<std::size_t>(evidence.lines) * evidence.length, std::numeric_limits<float>::quiet_NaN());
@@ -367,8 +376,10 @@ LineEvidence PlaneGrid::lineEvidence(const PlanePixelSamples& pixels, bool const
         low_g = std::min(low_g, g);
       }
       const std::size_t cell = static_cast<std::size_t>(line) * evidence.length + k;
-      // Both sides above the middle: a line or a groove, not a step.
-      if (std::isfinite(low_g)) raw[1][cell] = static_cast<float>(std::min(left_g, right_g) - low_g);
+      // Both sides above the middle: a line or a groove, not a step. A
+      // dark line beside paper is print (see kPrintSideGrey), not a seam.
+      if (std::isfinite(low_g) && !(std::max(left_g, right_g) > print_side_grey))
+        raw[1][cell] = static_cast<float>(std::min(left_g, right_g) - low_g);
       if (std::isfinite(low_d)) raw[0][cell] = static_cast<float>(std::min(left_d, right_d) - low_d);
     }
   }

@@ -111,6 +111,7 @@ PlanePixelSamples::PlanePixelSamples(const RgbdFrame& frame, const PlaneFit& pla
     }
   }
   face_grey_ = on_face.grey();
+  mean_face_grey_ = face_grey_(on_face.mean());
   grey_.reserve(total);
   for (int v = v_begin_; v < v_end; ++v)
   {
