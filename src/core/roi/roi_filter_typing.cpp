@@ -199,7 +199,13 @@ std::optional<std::string> RoiFilter::typeCutOffFace(const RgbdFrame& frame, con
     return showsTop(type, candidate.length_m, candidate.width_m, tolerance_m);
   };
   if (std::none_of(catalogue_.types().begin(), catalogue_.types().end(), fitsClosely))
-    return cut + "; its visible part fits no catalogue top within the dimension tolerance";
+  {
+    std::ostringstream text;
+    text.precision(3);
+    text << cut << "; its visible part (" << candidate.length_m << " x " << candidate.width_m
+         << " m) fits no catalogue top within the dimension tolerance";
+    return text.str();
+  }
   if (std::optional<std::string> misfit = shapeMisfit(candidate)) return cut + "; " + *misfit;
   if (std::optional<std::string> no_type = typeBySize(frame, context, candidate)) return cut + "; " + *no_type;
   const BrickType* type = catalogue_.find(candidate.type_name);
