@@ -345,9 +345,10 @@ private:
   /// Colour-free, a measured face cut off by the border or an occluder that
   /// no split explained: published in `outcome` as partial, typed by what
   /// is seen of it (typeCutOffFace). False, and nothing published, when no
-  /// type fits it (or the face is not cut off, or has a colour).
+  /// type fits it (`reason` then says why, as typeCutOffFace does) or the
+  /// face is not cut off, or has a colour.
   bool publishCutOff(const RgbdFrame& frame, const FrameContext& context, const Segment& segment,
-                     BrickCandidate& candidate, RoiOutcome& outcome) const;
+                     BrickCandidate& candidate, RoiOutcome& outcome, std::string& reason) const;
   /// Colour-free: whether the face is large enough for two of the smallest type.
   bool mayHoldTwoBricks(const BrickCandidate& candidate) const;
   /// Whether a seam may cross `face`: always, unless it is one brick wide

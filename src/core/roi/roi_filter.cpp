@@ -482,7 +482,7 @@ RoiOutcome RoiFilter::filterSplittingAsMeasured(const RgbdFrame& frame, const Se
   if (measured)
     if (std::optional<RoiOutcome> split = splitMerged(frame, segment, candidate, context, cloud_timings))
       return std::move(*split);
-  if (measured && publishCutOff(frame, context, segment, candidate, outcome)) return outcome;
+  if (measured && publishCutOff(frame, context, segment, candidate, outcome, *reason)) return outcome;
   // Plates at two heights joined through an edge without a clean depth jump
   // give one bent "plane": split where the depth steps, then filter (and
   // tile) each part.
@@ -513,18 +513,22 @@ RoiOutcome RoiFilter::filterSplittingAsMeasured(const RgbdFrame& frame, const Se
         std::move(split->rejections.begin(), split->rejections.end(), std::back_inserter(outcome.rejections));
         continue;
       }
-    if (part_measured && publishCutOff(frame, context, part, part_candidate, outcome)) continue;
+    if (part_measured && publishCutOff(frame, context, part, part_candidate, outcome, *part_reason)) continue;
     outcome.rejections.push_back(partRejection(part, *part_reason));
   }
   return outcome;
 }
 
 bool RoiFilter::publishCutOff(const RgbdFrame& frame, const FrameContext& context, const Segment& segment,
-                              BrickCandidate& candidate, RoiOutcome& outcome) const
+                              BrickCandidate& candidate, RoiOutcome& outcome, std::string& reason) const
 {
   // Colour-free only: a colour segment's type is its colour's, cut off or not.
   if (!segment.type_name.empty() || !anyTruncated(candidate)) return false;
-  if (typeCutOffFace(frame, context, candidate)) return false;
+  if (std::optional<std::string> no_type = typeCutOffFace(frame, context, candidate))
+  {
+    reason = *no_type;
+    return false;
+  }
   judgeCompleteness(frame, context, false, candidate);
   outcome.candidates.push_back(std::move(candidate));
   return true;
