@@ -80,6 +80,9 @@ constexpr std::size_t kMaxMedianSamples = 8192;
 /// while the bars and text of a label lie on white paper (about 1.5 times
 /// kraft cardboard's grey in any light), parallel to the box's edges, and
 /// their lines, averaged along a cut, passed for a seam half a box off.
+/// The reference is the whole face's mean: a hard shadow over half a face
+/// (darker than 0.4 of the light) would leave its lit seams unread, which
+/// costs cuts (the face stays whole, partial), never a cut made.
 constexpr double kPrintSideGrey = 1.3;
 
 /// Seam dips sampled along the lines of one direction of the grid. Line `l`
