@@ -84,6 +84,9 @@ constexpr std::size_t kMaxMedianSamples = 8192;
 /// (darker than 0.4 of the light) would leave its lit seams unread, which
 /// costs cuts (the face stays whole, partial), never a cut made.
 constexpr double kPrintSideGrey = 1.3;
+/// ... and at least this many grey levels above it: on a dim face (a red
+/// brick in a low light, grey 26) 1.3 times is within the noise.
+constexpr double kPrintSideAboveGrey = 15.0;
 
 /// Seam dips sampled along the lines of one direction of the grid. Line `l`
 /// (0..lines-1) has `length` samples; integral images over lines and
@@ -335,8 +338,9 @@ LineEvidence PlaneGrid::lineEvidence(const PlanePixelSamples& pixels, bool const
   evidence.length = constant_s ? ny_ : nx_;
   const int width = frame_.width_px(), height = frame_.height_px();
   const int half_window = halfWindowPx();
-  const double print_side_grey = pixels.meanFaceGrey() > 0.0 ? kPrintSideGrey * pixels.meanFaceGrey()
-                                                              : std::numeric_limits<double>::infinity();
+  const double mean_grey = pixels.meanFaceGrey();
+  const double print_side_grey = mean_grey > 0.0 ? std::max(kPrintSideGrey * mean_grey, mean_grey + kPrintSideAboveGrey)
+                                                 : std::numeric_limits<double>::infinity();
   std::array<std::vector<float>, 2> raw;
   for (auto& channel : raw)
     channel.assign(static_cast<std::size_t>(evidence.lines) * evidence.length, std::numeric_limits<float>::quiet_NaN());
