@@ -36,8 +36,9 @@ FaceRole roleOf(sim::CuboidFace face, const Eigen::Vector3d& normal_in_camera, c
   const double cos_up = normal_in_camera.dot(up);
   const double cos_tilt = std::cos(max_tilt_deg * kDegToRad);
   const double sin_tilt = std::sin(max_tilt_deg * kDegToRad);
-  // Only the catalogue's top face is a top: another face turned up is not
-  // the face whose size the catalogue gives.
+  // Only the catalogue's top face is a top here: another face turned up is
+  // not the face whose size the catalogue gives (a box resting on a side or
+  // an end is the top of another type: setRestingTop).
   if (face == sim::CuboidFace::kTop) return cos_up >= cos_tilt ? FaceRole::kTop : FaceRole::kOther;
   if (std::abs(cos_up) <= sin_tilt) return FaceRole::kSide;
   if (face == sim::CuboidFace::kBottom && cos_up <= -cos_tilt) return FaceRole::kBottom;
@@ -54,6 +55,45 @@ TopFaceGeometry topGeometry(const sim::BrickTruth& truth)
   geometry.width_m = truth.dimensions_m.y();
   geometry.corners_m = sim::topFaceCornersInCamera(truth);
   return geometry;
+}
+
+/// The rig's own verdict on a top's edges (every edge sample in the image
+/// and unhidden), and the visible fraction for what lies inside the edges
+/// (a smaller box standing on a larger one's top): why the top is not
+/// whole, empty when it is.
+std::string notWholeReason(const FaceTruth& face, const sim::TopFaceVisibility& view, bool edges_seen,
+                           const RigTruthParams& params)
+{
+  char reason[96];
+  if (face.role != FaceRole::kTop) return "the top face does not face up";
+  if (view.cut_by_border) return "cut by the image border";
+  if (view.occluded || !edges_seen)
+  {
+    std::snprintf(reason, sizeof(reason), "occluded (%.1f%% visible)", 100.0 * face.visible_fraction);
+    return reason;
+  }
+  if (face.visible_fraction < params.min_visible_fraction)
+  {
+    std::snprintf(reason, sizeof(reason), "covered inside its edges (%.1f%% visible)", 100.0 * face.visible_fraction);
+    return reason;
+  }
+  return {};
+}
+
+/// The face up of a box on a side or an end, as the top of the type it is
+/// resting so (a plain box's face a picker grasps).
+void setRestingTop(const sim::RestingFaceTruth& resting, const RigTruthParams& params, FaceTruth& face)
+{
+  face.role = FaceRole::kTop;
+  face.type = resting.type;
+  face.visible_fraction = resting.visible_fraction;
+  face.has_geometry = true;
+  sim::BrickTruth as_top;
+  as_top.dimensions_m = resting.dimensions_m;
+  as_top.camera_T_brick = resting.camera_T_face;
+  face.geometry = topGeometry(as_top);
+  face.not_whole_reason = notWholeReason(face, resting.view, resting.view.complete(), params);
+  face.whole_in_view = face.not_whole_reason.empty();
 }
 }  // namespace
 
@@ -84,29 +124,17 @@ SceneTruth rigSceneTruth(const sim::SyntheticFrame& frame, const Eigen::Vector3d
       face_truth.type = brick.type;
       const Eigen::Vector3d normal = brick.camera_T_brick.linear() * faceNormalInBrick(face);
       face_truth.role = roleOf(face, normal, up_in_camera, params.max_up_tilt_deg);
+      if (brick.resting_face && brick.resting_face->face == face)
+      {
+        if (normal.dot(up_in_camera) >= std::cos(params.max_up_tilt_deg * kDegToRad))
+          setRestingTop(*brick.resting_face, params, face_truth);
+        continue;
+      }
       if (face != sim::CuboidFace::kTop) continue;
       face_truth.visible_fraction = brick.visible_fraction;
       face_truth.has_geometry = true;
       face_truth.geometry = topGeometry(brick);
-      // The rig's own verdict on the edges (every edge sample in the image
-      // and unhidden), and the visible fraction for what lies inside the
-      // edges (a smaller box standing on a larger one's top).
-      char reason[96];
-      if (face_truth.role != FaceRole::kTop)
-        face_truth.not_whole_reason = "the top face does not face up";
-      else if (brick.top_face.cut_by_border)
-        face_truth.not_whole_reason = "cut by the image border";
-      else if (brick.top_face.occluded || !brick.top_face_complete)
-      {
-        std::snprintf(reason, sizeof(reason), "occluded (%.1f%% visible)", 100.0 * brick.visible_fraction);
-        face_truth.not_whole_reason = reason;
-      }
-      else if (brick.visible_fraction < params.min_visible_fraction)
-      {
-        std::snprintf(reason, sizeof(reason), "covered inside its edges (%.1f%% visible)",
-                      100.0 * brick.visible_fraction);
-        face_truth.not_whole_reason = reason;
-      }
+      face_truth.not_whole_reason = notWholeReason(face_truth, brick.top_face, brick.top_face_complete, params);
       face_truth.whole_in_view = face_truth.not_whole_reason.empty();
     }
   }

@@ -25,6 +25,7 @@
 #include "brick_pose/BrickDetectionArray.h"
 #include "brick_pose/GetBrickPose.h"
 #include "brick_pose/PoseCorrectionConfig.h"
+#include "brick_pose/catalogue/resting.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/pipeline/pipeline_config.h"
 #include "brick_pose/pose/brick_selection.h"
@@ -219,9 +220,11 @@ private:
                                       const std_msgs::Header& header)
   {
     BrickDetection detection;
-    detection.type = estimate.type_name;
+    // A box on a side keeps its catalogue type's name: tf names one box.
+    detection.type = estimate.catalogue_type;
+    detection.resting = toString(estimate.resting);
     detection.id = tracked.id;
-    detection.frame = "brick_" + estimate.type_name + "_" + std::to_string(tracked.id);
+    detection.frame = "brick_" + estimate.catalogue_type + "_" + std::to_string(tracked.id);
     detection.pose.header = header;
     detection.pose.pose = tf2::toMsg(tracked.pose);
     detection.dimensions = toVector3(estimate.dimensions_m);
@@ -362,6 +365,7 @@ private:
     }
     response.type = detection.type;
     response.other_possible_types = detection.other_possible_types;
+    response.resting = detection.resting;
     response.id = detection.id;
     response.frame = detection.frame;
     response.dimensions = detection.dimensions;

@@ -86,6 +86,7 @@ visualization_msgs::Marker label(const BrickDetection& detection, int id)
   char fitness[16];
   std::snprintf(fitness, sizeof(fitness), " %.2f", detection.fitness);
   marker.text = detection.frame + fitness + (detection.pickable ? " pick" : "");
+  if (!detection.resting.empty() && detection.resting != "upright") marker.text += " " + detection.resting;
   // A type only a side would tell: the others it may be, beside the name.
   std::string others;
   for (const std::string& type : detection.other_possible_types) others += (others.empty() ? "" : ", ") + type;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 
+#include "brick_pose/catalogue/resting.h"
 #include "brick_pose/sim/box_print.h"
 #include "brick_pose/sim/fast_random.h"
 #include "brick_pose/sim/ray_caster.h"
@@ -454,8 +455,35 @@ private:
       truth.top_face = topFaceVisibility(scene_, caster_, camera_, i);
       truth.top_face_complete = truth.top_face.complete();
       truth.touching_neighbours = touching[i];
+      if (restingWithFaceUp(truth.top_face.up_face) != Resting::kUpright)
+        truth.resting_face = restingFaceTruth(frame, i, truth.top_face.up_face);
     }
     return truths;
+  }
+
+  /// The face up of brick i, lying on a side or standing on an end, as the
+  /// top of the type restingAs() makes of it.
+  RestingFaceTruth restingFaceTruth(const SyntheticFrame& frame, int i, CuboidFace face) const
+  {
+    const BrickType as_top = restingAs(scene_.bricks[i].type, restingWithFaceUp(face));
+    RestingFaceTruth resting;
+    resting.type = as_top.name;
+    resting.face = face;
+    resting.dimensions_m = as_top.dimensions_m();
+    resting.camera_T_face = caster_.cameraTBricks()[i] * brickTFace(scene_.bricks[i].type, face);
+    resting.view = faceVisibility(scene_, caster_, camera_, i, face);
+    int visible_px = 0;
+    for (int v = 0; v < frame.instance_labels.rows; ++v)
+      for (int u = 0; u < frame.instance_labels.cols; ++u)
+        if (frame.instance_labels.at<unsigned short>(v, u) == i + 1 &&
+            frame.face_labels.at<unsigned char>(v, u) == static_cast<unsigned char>(face))
+          ++visible_px;
+    BrickTruth as_truth;
+    as_truth.dimensions_m = resting.dimensions_m;
+    as_truth.camera_T_brick = resting.camera_T_face;
+    const double area_px = unoccludedTopFaceArea(as_truth);
+    resting.visible_fraction = area_px > 0.0 ? std::min(1.0, visible_px / area_px) : 0.0;
+    return resting;
   }
 
   /// Pixels the top face would cover if nothing hid it and the image had no

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "brick_pose/catalogue/resting.h"
 #include "brick_pose/common/angles.h"
 
 namespace brick_pose
@@ -52,17 +53,27 @@ bool TopFaceVisibility::complete() const
 TopFaceVisibility topFaceVisibility(const Scene& scene, const RayCaster& caster, const PinholeCamera& camera,
                                     int brick_index)
 {
+  return faceVisibility(scene, caster, camera, brick_index, CuboidFace::kTop);
+}
+
+TopFaceVisibility faceVisibility(const Scene& scene, const RayCaster& caster, const PinholeCamera& camera,
+                                 int brick_index, CuboidFace face)
+{
   TopFaceVisibility result;
   const PlacedBrick& brick = scene.bricks[brick_index];
   const Eigen::Matrix3d world_R_brick = brick.world_T_brick.linear();
-  result.tilt_deg = std::acos(std::clamp(world_R_brick(2, 2), -1.0, 1.0)) * kRadToDeg;
+  const Eigen::Isometry3d brick_T_face = brickTFace(brick.type, face);
+  const Eigen::Vector3d world_normal = world_R_brick * brick_T_face.linear().col(2);
+  result.tilt_deg = std::acos(std::clamp(world_normal.z(), -1.0, 1.0)) * kRadToDeg;
   result.up_face = faceMostUp(world_R_brick);
 
-  const Eigen::Isometry3d& camera_T_brick = caster.cameraTBricks()[brick_index];
-  result.facing_camera = camera_T_brick.linear().col(2).dot(camera_T_brick.translation()) < 0.0;
+  const Eigen::Isometry3d camera_T_face = caster.cameraTBricks()[brick_index] * brick_T_face;
+  result.facing_camera = camera_T_face.linear().col(2).dot(camera_T_face.translation()) < 0.0;
   if (!result.facing_camera) return result;
 
-  const auto corners = topFaceCornersInBrick(brick.type);
+  // The face's corners in its own frame: the top of the type it is the top of.
+  const BrickType as_top = restingAs(brick.type, restingWithFaceUp(face));
+  const auto corners = topFaceCornersInBrick(as_top);
   for (int edge = 0; edge < 4; ++edge)
   {
     const Eigen::Vector3d& a = corners[edge];
@@ -74,7 +85,7 @@ TopFaceVisibility topFaceVisibility(const Scene& scene, const RayCaster& caster,
     for (int s = 0; s < kTopEdgeSamples; ++s)
     {
       const double t = (s + 0.5) / kTopEdgeSamples;
-      const Eigen::Vector3d point_camera = camera_T_brick * (a + t * (b - a) + kInsetM * inward);
+      const Eigen::Vector3d point_camera = camera_T_face * (a + t * (b - a) + kInsetM * inward);
       if (point_camera.z() <= 1e-3 || !insideImage(camera, camera.project(point_camera)))
       {
         result.cut_by_border = true;
@@ -82,7 +93,7 @@ TopFaceVisibility topFaceVisibility(const Scene& scene, const RayCaster& caster,
       }
       // Ray parameter 1 is the sample itself: the nearest hit must be it.
       const RayHit hit = caster.cast(Eigen::Vector3d::Zero(), point_camera);
-      if (hit.brick_index == brick_index && hit.face == CuboidFace::kTop)
+      if (hit.brick_index == brick_index && hit.face == face)
         ++seen;
       else
         result.occluded = true;

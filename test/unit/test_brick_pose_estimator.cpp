@@ -85,6 +85,42 @@ TEST(BrickPoseEstimator, SingleBricksWithinOneDegreeAndThreeMillimetres)
   EXPECT_EQ(checked, 6);
 }
 
+TEST(BrickPoseEstimator, ABoxOnItsSideIsPlacedAtItsFaceUpWithTheDepthBelowIt)
+{
+  // A plain box lying on a long side, seen obliquely: the pose is the face
+  // up's (its centre, z out of it), the dimensions that face's and the
+  // box's width below it, and the type stays the catalogue's.
+  const BrickCatalogue catalogue = BrickCatalogue::fromYamlString(R"(bricks:
+  - {name: box_small, length_m: 0.30, width_m: 0.20, height_m: 0.15}
+)");
+  const BrickType& type = catalogue.types().front();
+  sim::Scene scene;
+  sim::PlacedBrick box{type, Eigen::Isometry3d::Identity()};
+  box.world_T_brick.linear() = (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) *
+                                Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitX()))
+                                   .toRotationMatrix();
+  box.world_T_brick.translation() = Eigen::Vector3d(0.0, 0.0, type.width_m);
+  scene.bricks.push_back(box);
+  scene.world_T_camera = sim::lookAt(Eigen::Vector3d(0.0, 0.0, 0.1), 1.1, 60.0, 20.0);
+  const RenderedCase rendered = render(scene, 3);
+  ASSERT_TRUE(rendered.synthetic.truth[0].resting_face.has_value());
+  FrontEndParams params;
+  params.mode = SegmentationMode::kColourFree;
+  const FrontEndResult result = FrontEnd(catalogue, params).process(rendered.frame);
+  ASSERT_EQ(result.candidates.size(), 1u);
+  EXPECT_EQ(result.candidates[0].type_name, "box_small lying on a side");
+  const BrickPoseEstimate estimate = BrickPoseEstimator(catalogue, untimedParams()).estimate(result.candidates[0]);
+  EXPECT_EQ(estimate.catalogue_type, "box_small");
+  EXPECT_EQ(estimate.resting, Resting::kOnSide);
+  EXPECT_NEAR(estimate.dimensions_m.x(), 0.30, 1e-9);
+  EXPECT_NEAR(estimate.dimensions_m.y(), 0.15, 1e-9);
+  EXPECT_NEAR(estimate.dimensions_m.z(), 0.20, 1e-9);
+  const auto error =
+      registration::poseErrorModuloSymmetry(estimate.pose, rendered.synthetic.truth[0].resting_face->camera_T_face);
+  EXPECT_LT(error.rotation_deg, 1.0);
+  EXPECT_LT(error.translation_mm(), 3.0);
+}
+
 TEST(BrickPoseEstimator, OccludedFaceStillRegisters)
 {
   // A red brick across the middle of a blue one hides part of the blue plate.

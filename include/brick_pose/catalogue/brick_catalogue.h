@@ -28,6 +28,15 @@ struct HsvRange
   bool contains(int h, int s, int v) const;
 };
 
+/// How a box rests on what carries it: on its bottom (the catalogue's top
+/// face up), on a long side, or on an end (see catalogue/resting.h).
+enum class Resting
+{
+  kUpright,
+  kOnSide,
+  kOnEnd,
+};
+
 struct BrickType
 {
   std::string name;
@@ -39,8 +48,15 @@ struct BrickType
   /// HSV range of the top face's colour; empty for a type with no plate
   /// colour (a plain box), which HSV segmentation skips.
   std::optional<HsvRange> plate_hsv;
+  /// A catalogue type seen resting otherwise (restingAs()): how it rests
+  /// and the catalogue type's name. Its length and width are then those of
+  /// the face up, and its height the depth below that face.
+  Resting resting = Resting::kUpright;
+  std::string catalogue_name;
 
   bool hasPlateColour() const { return plate_hsv.has_value(); }
+  /// The catalogue type this is: its own name when upright.
+  const std::string& catalogueName() const { return resting == Resting::kUpright ? name : catalogue_name; }
   Eigen::Vector3d dimensions_m() const { return {length_m, width_m, height_m}; }
   /// Throws ConfigError naming the field when a value is unusable.
   void validate() const;
@@ -70,6 +86,10 @@ public:
 
   /// Like find() but throws ConfigError listing the known types.
   const BrickType& at(const std::string& name) const;
+
+  /// A catalogue type, or one resting on a side or an end named as
+  /// restingAs() names it ("box_small lying on a side"); nullopt for none.
+  std::optional<BrickType> findResting(const std::string& name) const;
 
   std::string namesJoined() const;
 

@@ -1,7 +1,9 @@
 #pragma once
 // SceneTruth of a synthetic rig frame: the rig's face labels are exact, so
 // only the roles need deciding (a catalogue top face counts as a top only
-// while it faces up); whether each top is whole in view is the rig's own
+// while it faces up; the face up of a box lying on a side or standing on an
+// end is the top of the type catalogue/resting.h makes of it, "box_small
+// lying on a side"); whether each top is whole in view is the rig's own
 // verdict on its edges plus a check of its visible fraction.
 
 #include <Eigen/Core>
@@ -21,8 +23,9 @@ struct RigTruthParams
   /// leaves the edges free but hides the face. Not 1: the rounded edges of
   /// boxes and the outermost pixel row cost a little.
   double min_visible_fraction = 0.95;
-  /// A catalogue top face is a top while its normal is within this of "up";
-  /// a cuboid face is a side while its normal is within this of horizontal.
+  /// A catalogue top face (or a resting box's face up) is a top while its
+  /// normal is within this of "up"; a cuboid face is a side while its
+  /// normal is within this of horizontal.
   double max_up_tilt_deg = 30.0;
 
   void validate() const;  ///< Throws ConfigError naming the field.

@@ -58,7 +58,13 @@ struct BrickRegistration
 /// The final pose of one candidate and how it was obtained.
 struct BrickPoseEstimate
 {
+  /// The candidate's type: a catalogue type, or one resting on a side or
+  /// an end as restingAs() names it ("box_small lying on a side").
   std::string type_name;
+  /// The catalogue type it is, and how it rests: the pose and the
+  /// dimensions are those of the face up (length, width, depth below).
+  std::string catalogue_type;
+  Resting resting = Resting::kUpright;
   Eigen::Vector3d dimensions_m = Eigen::Vector3d::Zero();
   BrickRegistration registration;
   RefinementMethod refinement = RefinementMethod::kNone;
@@ -74,7 +80,8 @@ struct BrickPoseEstimate
 class BrickPoseEstimator
 {
 public:
-  /// Builds the model cloud of every catalogue type once. Throws ConfigError.
+  /// Builds the model cloud of every catalogue type once, and of each plain
+  /// box type resting on a side and on an end. Throws ConfigError.
   BrickPoseEstimator(const BrickCatalogue& catalogue, const BrickPoseEstimatorParams& params);
 
   /// Stage 4. Throws InputError when the candidate cannot be registered
@@ -92,8 +99,14 @@ public:
   const BrickCatalogue& catalogue() const { return catalogue_; }
 
 private:
+  /// The type a candidate names (a catalogue type or one resting
+  /// otherwise). Throws InputError for an unknown one.
+  const BrickType& typeOf(const BrickCandidate& candidate) const;
+
   BrickCatalogue catalogue_;
   BrickPoseEstimatorParams params_;
+  /// Every type a candidate may name, by name, with its model cloud.
+  std::map<std::string, BrickType> types_;
   std::map<std::string, registration::PointSet> models_;
 };
 }  // namespace brick_pose

@@ -296,6 +296,26 @@ private:
   /// down to their foot, measured up to `tallest_m`.
   std::vector<SideFaceEvidence> sidesSeenToTheirFoot(const RgbdFrame& frame, const FrameContext& context,
                                                      const BrickCandidate& candidate, double tallest_m) const;
+  /// A plain box lying on a side or standing on an end (on a table) shows
+  /// a face that no upright type's top (of `upright`) is within the
+  /// dimension tolerance of, that one of its resting variants among
+  /// `rivals` is, and that this variant fits by kTypeMarginM better than the
+  /// best upright type (misfit `upright_misfit_m`, negative for none): that
+  /// variant, else null. Nearer an upright top the face stays that type,
+  /// the resting one in its doubt. (Letting a variant within only the
+  /// classification tolerance win found 1-2 more boxes on a side in the
+  /// table views and typed 2 stacked tops as lying.)
+  const BrickType* restingInstead(const BrickCandidate& candidate, const std::optional<StandingHeight>& standing,
+                                  const std::vector<SideFaceEvidence>& sides,
+                                  const std::vector<const BrickType*>& upright,
+                                  const std::vector<const BrickType*>& rivals, double upright_misfit_m) const;
+  /// The catalogue type of that name, or one of lying_variants_; null for
+  /// none.
+  const BrickType* typeNamed(const std::string& name) const;
+  /// How far each of `types` could not stand at the face's height, its
+  /// footing unseen counted (see closestType()); empty without a support.
+  std::vector<double> standingMisfits(const std::vector<const BrickType*>& types,
+                                      const std::optional<StandingHeight>& standing) const;
   /// Narrows a colour-free face's types (`fitting`) and their rivals to
   /// those that could stand at `height` (its standingHeight; see
   /// height_above_support_tolerance_m); unchanged without one, or when the

@@ -40,10 +40,14 @@ bool showsTop(const BrickType& type, double length_m, double width_m, double tol
 /// fits worse by the difference, a taller one no worse. Where given,
 /// `standing_misfits_m[i]` (see standingMisfitM) adds how far `fitting[i]`
 /// could not stand at the face's height: among types otherwise tied, the
-/// one standing most exactly where the face is wins. Null for no types.
+/// one standing most exactly where the face is wins. Null for no types;
+/// `misfit_m`, when given, receives the winner's misfit (m).
 const BrickType* closestType(const std::vector<const BrickType*>& fitting, double length_m, double width_m,
                              const std::vector<SideFaceEvidence>& sides,
-                             const std::vector<double>& standing_misfits_m = {});
+                             const std::vector<double>& standing_misfits_m = {}, double* misfit_m = nullptr);
+
+/// closestType()'s misfit of one type (m), without where it stands.
+double typeMisfitM(const BrickType& type, double length_m, double width_m, const std::vector<SideFaceEvidence>& sides);
 
 /// The faces of `types` other than their tops that differ from the top by
 /// kTypeMarginM or more, each as a type whose "top" is that face, as tall as

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,22 @@ struct TopFaceVisibility
   bool complete() const;
 };
 
+/// The face up of a box resting on a long side or an end, seen as the top
+/// of the type restingAs() makes of it (catalogue/resting.h): what a
+/// detector that types it so must find.
+struct RestingFaceTruth
+{
+  std::string type;  // restingAs()'s name: "box_small lying on a side"
+  CuboidFace face = CuboidFace::kNone;  // which of the brick's faces is up
+  /// Length and width of the face up, and the depth of the box below it.
+  Eigen::Vector3d dimensions_m = Eigen::Vector3d::Zero();
+  /// The face's frame: origin at its centre, z out of it, x along its long edge.
+  Eigen::Isometry3d camera_T_face = Eigen::Isometry3d::Identity();
+  /// As BrickTruth's for a top: visible share, and its edges as seen.
+  double visible_fraction = 0.0;
+  TopFaceVisibility view;
+};
+
 /// Ground truth of one brick in one rendered frame.
 struct BrickTruth
 {
@@ -121,6 +138,8 @@ struct BrickTruth
   /// Other bricks with a side face within kTouchingToleranceM of one of this
   /// brick's side faces (side by side or end to end, any gap 0..3 mm).
   int touching_neighbours = 0;
+  /// Set when the face most nearly up is a long side or an end.
+  std::optional<RestingFaceTruth> resting_face;
 };
 
 /// Tilt beyond which a top face counts as a side face in BrickTruth.
@@ -133,5 +152,13 @@ using brick_pose::topFaceCornersInBrick;
 
 /// Top-face corners expressed in the camera frame.
 std::array<Eigen::Vector3d, 4> topFaceCornersInCamera(const BrickTruth& truth);
+
+/// The frame of `face` of a brick of `type`, in the brick frame: origin at
+/// the face's centre, z along its outward normal, x along its longer edge
+/// (identity for the top).
+Eigen::Isometry3d brickTFace(const BrickType& type, CuboidFace face);
+
+/// How a brick with `face` up rests (kUpright for the top or the bottom).
+Resting restingWithFaceUp(CuboidFace face);
 }  // namespace sim
 }  // namespace brick_pose

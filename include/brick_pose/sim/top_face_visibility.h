@@ -24,5 +24,11 @@ constexpr int kTopEdgeSamples = 64;
 /// Visibility of the top face of scene.bricks[brick_index] through `camera`.
 TopFaceVisibility topFaceVisibility(const Scene& scene, const RayCaster& caster, const PinholeCamera& camera,
                                     int brick_index);
+
+/// The same for any `face` of the brick, seen as the top of the type
+/// restingAs() makes of the brick with that face up (its tilt_deg is then
+/// the face's normal's from the world's up).
+TopFaceVisibility faceVisibility(const Scene& scene, const RayCaster& caster, const PinholeCamera& camera,
+                                 int brick_index, CuboidFace face);
 }  // namespace sim
 }  // namespace brick_pose

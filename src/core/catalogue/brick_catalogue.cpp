@@ -8,6 +8,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "brick_pose/catalogue/resting.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/common/yaml_document.h"
 
@@ -184,6 +185,17 @@ const BrickType* BrickCatalogue::find(const std::string& name) const
   for (const BrickType& type : types_)
     if (type.name == name) return &type;
   return nullptr;
+}
+
+std::optional<BrickType> BrickCatalogue::findResting(const std::string& name) const
+{
+  for (const BrickType& type : types_)
+    for (const Resting resting : {Resting::kUpright, Resting::kOnSide, Resting::kOnEnd})
+    {
+      BrickType variant = restingAs(type, resting);
+      if (variant.name == name) return variant;
+    }
+  return std::nullopt;
 }
 
 bool BrickCatalogue::couldRiseTo(double height_m, double margin_m) const

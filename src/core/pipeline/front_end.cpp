@@ -304,7 +304,8 @@ void FrontEnd::dropSmallPieces(FrontEndResult& result) const
   auto& candidates = result.candidates;
   for (auto it = candidates.begin(); it != candidates.end();)
   {
-    const BrickType* type = catalogue_.find(it->type_name);
+    // (a box resting on a side: the size of its face up)
+    const std::optional<BrickType> type = catalogue_.findResting(it->type_name);
     const double min_length_m = type ? tolerance.min_visible_fraction * type->length_m - tolerance.tolerance_m : 0.0;
     const double min_width_m = type ? tolerance.min_visible_fraction * type->width_m - tolerance.tolerance_m : 0.0;
     // The longer measured side may be the width of a short visible piece.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <unordered_set>
 
+#include "brick_pose/catalogue/resting.h"
 #include "brick_pose/common/elapsed.h"
 #include "brick_pose/common/errors.h"
 #include "brick_pose/correction/measured_face.h"
@@ -68,7 +69,20 @@ BrickPoseEstimator::BrickPoseEstimator(const BrickCatalogue& catalogue, const Br
   registration::ModelCloudParams options;
   options.spacing_m = params_.model_spacing_m;
   for (const BrickType& type : catalogue_.types())
-    models_[type.name] = registration::buildBrickModelCloud(type, options);
+    for (const Resting resting : {Resting::kUpright, Resting::kOnSide, Resting::kOnEnd})
+    {
+      if (resting != Resting::kUpright && !mayRestOtherwise(type)) continue;
+      const BrickType as_top = restingAs(type, resting);
+      models_[as_top.name] = registration::buildBrickModelCloud(as_top, options);
+      types_[as_top.name] = as_top;
+    }
+}
+
+const BrickType& BrickPoseEstimator::typeOf(const BrickCandidate& candidate) const
+{
+  const auto type = types_.find(candidate.type_name);
+  if (type == types_.end()) throw InputError("candidate of unknown brick type '" + candidate.type_name + "'");
+  return type->second;
 }
 
 BrickRegistration BrickPoseEstimator::registerCandidate(const BrickCandidate& candidate) const
@@ -87,7 +101,7 @@ BrickRegistration BrickPoseEstimator::registerCandidate(const BrickCandidate& ca
   // that is visible: an occluded brick needs a lower overlap, or Super4PCS
   // rejects its (correct) pose as too poor a match.
   registration::Super4PCSParams params = params_.super4pcs;
-  const BrickType& type = catalogue_.at(candidate.type_name);
+  const BrickType& type = typeOf(candidate);
   const double visible_fraction =
       visibleFaceArea(*candidate.points, candidate.normal) / (type.length_m * type.width_m);
   params.overlap = std::clamp(visible_fraction, kMinOverlap, params_.super4pcs.overlap);
@@ -114,9 +128,11 @@ BrickRegistration BrickPoseEstimator::registerCandidate(const BrickCandidate& ca
 
 BrickPoseEstimate BrickPoseEstimator::refine(const BrickCandidate& candidate, const BrickRegistration& registration) const
 {
-  const BrickType& type = catalogue_.at(candidate.type_name);
+  const BrickType& type = typeOf(candidate);
   BrickPoseEstimate estimate;
   estimate.type_name = type.name;
+  estimate.catalogue_type = type.catalogueName();
+  estimate.resting = type.resting;
   estimate.dimensions_m = type.dimensions_m();
   estimate.registration = registration;
   estimate.refinement = params_.refinement;

@@ -14,6 +14,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "brick_pose/catalogue/resting.h"
 #include "brick_pose/common/rounding.h"
 #include "brick_pose/roi/colour_uniformity.h"
 #include "brick_pose/roi/foot_levels.h"
@@ -208,7 +209,7 @@ std::optional<std::string> RoiFilter::typeCutOffFace(const RgbdFrame& frame, con
   }
   if (std::optional<std::string> misfit = shapeMisfit(candidate)) return cut + "; " + *misfit;
   if (std::optional<std::string> no_type = typeBySize(frame, context, candidate)) return cut + "; " + *no_type;
-  const BrickType* type = catalogue_.find(candidate.type_name);
+  const BrickType* type = typeNamed(candidate.type_name);
   if (type && !fitsClosely(*type))
     return cut + "; its visible part is no " + type->name + " top within the dimension tolerance";
   const std::string doubt = "it is cut off, and its type is the one its visible part fits (a larger one's part may look so)";
@@ -219,7 +220,7 @@ std::optional<std::string> RoiFilter::typeCutOffFace(const RgbdFrame& frame, con
 std::optional<std::string> RoiFilter::heightRulesOutType(const RgbdFrame& frame, const FrameContext& context,
                                                          const BrickCandidate& candidate) const
 {
-  const BrickType* own = catalogue_.find(candidate.type_name);
+  const BrickType* own = typeNamed(candidate.type_name);
   const double tolerance_m = params_.height_above_support_tolerance_m;
   if (!own || !heightTellsTypes(context)) return std::nullopt;
   const double height_m = context.up.heightAboveSupport(candidate.centroid_m);
@@ -284,13 +285,11 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
   // the face's real edges say how tall the box is.
   const std::vector<SideFaceEvidence> sides =
       rivals.size() > 1 ? sidesSeenToTheirFoot(frame, context, candidate, tallest_m) : std::vector<SideFaceEvidence>();
-  std::vector<double> standing_misfits_m =
-      standing ? standingMisfitsM(fitting, standing->height_m, stack_heights_) : std::vector<double>();
-  // Of types tied there, the one whose footing shows beside the face.
-  for (std::size_t i = 0; i < standing_misfits_m.size(); ++i)
-    standing_misfits_m[i] += footingUnseenPenaltyM(*fitting[i], standing->height_m, standing->levels_m,
-                                                   params_.height_above_support_tolerance_m);
-  const BrickType* best = closestType(fitting, candidate.length_m, candidate.width_m, sides, standing_misfits_m);
+  double best_misfit_m = 0.0;
+  const BrickType* best = closestType(fitting, candidate.length_m, candidate.width_m, sides,
+                                      standingMisfits(fitting, standing), &best_misfit_m);
+  if (const BrickType* lying = restingInstead(candidate, standing, sides, fitting, rivals, best ? best_misfit_m : -1.0))
+    best = lying;
   if (!best)
   {
     std::ostringstream text;
@@ -309,6 +308,49 @@ std::optional<std::string> RoiFilter::typeBySize(const RgbdFrame& frame, const F
   candidate.other_possible_types.clear();
   for (const BrickType* type : open) candidate.other_possible_types.push_back(type->name);
   return std::nullopt;
+}
+
+const BrickType* RoiFilter::restingInstead(const BrickCandidate& candidate,
+                                           const std::optional<StandingHeight>& standing,
+                                           const std::vector<SideFaceEvidence>& sides,
+                                           const std::vector<const BrickType*>& upright,
+                                           const std::vector<const BrickType*>& rivals,
+                                           double upright_misfit_m) const
+{
+  // A type holds the face where its top is within the dimension tolerance
+  // of the face's size: an upright one keeps it, a resting one must.
+  const auto holds = [&](const BrickType* type) {
+    return showsTop(*type, candidate.length_m, candidate.width_m, params_.dimensions.tolerance_m);
+  };
+  if (std::any_of(upright.begin(), upright.end(), holds)) return nullptr;
+  std::vector<const BrickType*> resting;
+  for (const BrickType* rival : rivals)
+    if (rival->resting != Resting::kUpright && mayRestOtherwise(*rival) && holds(rival)) resting.push_back(rival);
+  double misfit_m = 0.0;
+  const BrickType* lying =
+      closestType(resting, candidate.length_m, candidate.width_m, sides, standingMisfits(resting, standing), &misfit_m);
+  if (!lying || (upright_misfit_m >= 0.0 && misfit_m + kTypeMarginM > upright_misfit_m)) return nullptr;
+  return lying;
+}
+
+const BrickType* RoiFilter::typeNamed(const std::string& name) const
+{
+  if (const BrickType* type = catalogue_.find(name)) return type;
+  for (const BrickType& variant : lying_variants_)
+    if (variant.name == name) return &variant;
+  return nullptr;
+}
+
+std::vector<double> RoiFilter::standingMisfits(const std::vector<const BrickType*>& types,
+                                               const std::optional<StandingHeight>& standing) const
+{
+  if (!standing) return {};
+  std::vector<double> misfits_m = standingMisfitsM(types, standing->height_m, stack_heights_);
+  // Of types tied there, the one whose footing shows beside the face.
+  for (std::size_t i = 0; i < misfits_m.size(); ++i)
+    misfits_m[i] += footingUnseenPenaltyM(*types[i], standing->height_m, standing->levels_m,
+                                          params_.height_above_support_tolerance_m);
+  return misfits_m;
 }
 
 std::vector<SideFaceEvidence> RoiFilter::sidesSeenToTheirFoot(const RgbdFrame& frame, const FrameContext& context,
@@ -440,7 +482,7 @@ void RoiFilter::doubtComposedTop(const RgbdFrame& frame, const FrameContext& con
                                  bool in_layer, BrickCandidate& candidate) const
 {
   if (!candidate.complete) return;
-  const BrickType* type = catalogue_.find(candidate.type_name);
+  const BrickType* type = typeNamed(candidate.type_name);
   if (!type) return;
   if (!smallerTypeTiling(catalogue_.types(), *type, params_.dimensions.tolerance_m).type) return;
   // Smaller boxes side by side stand where the face is, as exactly as any

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "brick_pose/catalogue/resting.h"
+
 namespace brick_pose
 {
 namespace
@@ -50,25 +52,32 @@ bool showsTop(const BrickType& type, double length_m, double width_m, double tol
   return std::abs(length_m - type.length_m) <= tolerance_m && std::abs(width_m - type.width_m) <= tolerance_m;
 }
 
+double typeMisfitM(const BrickType& type, double length_m, double width_m, const std::vector<SideFaceEvidence>& sides)
+{
+  double error_m = topErrorM(type, length_m, width_m);
+  for (const SideFaceEvidence& side : sides)
+  {
+    error_m += side.foot_on_support ? std::abs(side.visible_height_m - type.height_m)
+                                    : std::max(0.0, side.visible_height_m - type.height_m);
+    // A type taller than a side ending on something needs the rest of
+    // its side hidden there by a neighbour just that high: among types
+    // otherwise tied, the one the side ends at the bottom of is likelier.
+    if (!side.foot_on_support && type.height_m > side.visible_height_m + kTypeMarginM)
+      error_m += kHiddenSidePenaltyM;
+  }
+  return error_m;
+}
+
 const BrickType* closestType(const std::vector<const BrickType*>& fitting, double length_m, double width_m,
-                             const std::vector<SideFaceEvidence>& sides, const std::vector<double>& standing_misfits_m)
+                             const std::vector<SideFaceEvidence>& sides, const std::vector<double>& standing_misfits_m,
+                             double* misfit_m)
 {
   const BrickType* best = nullptr;
   double best_error_m = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < fitting.size(); ++i)
   {
     const BrickType& type = *fitting[i];
-    double error_m = topErrorM(type, length_m, width_m);
-    for (const SideFaceEvidence& side : sides)
-    {
-      error_m += side.foot_on_support ? std::abs(side.visible_height_m - type.height_m)
-                                      : std::max(0.0, side.visible_height_m - type.height_m);
-      // A type taller than a side ending on something needs the rest of
-      // its side hidden there by a neighbour just that high: among types
-      // otherwise tied, the one the side ends at the bottom of is likelier.
-      if (!side.foot_on_support && type.height_m > side.visible_height_m + kTypeMarginM)
-        error_m += kHiddenSidePenaltyM;
-    }
+    double error_m = typeMisfitM(type, length_m, width_m, sides);
     if (i < standing_misfits_m.size()) error_m += standing_misfits_m[i];
     if (!best || error_m < best_error_m)  // (a NaN error never wins)
     {
@@ -76,6 +85,7 @@ const BrickType* closestType(const std::vector<const BrickType*>& fitting, doubl
       best_error_m = error_m;
     }
   }
+  if (misfit_m) *misfit_m = best_error_m;
   return best;
 }
 
@@ -83,22 +93,11 @@ std::vector<BrickType> lyingVariants(const std::vector<BrickType>& types)
 {
   std::vector<BrickType> variants;
   for (const BrickType& type : types)
-  {
-    // Lying on a long side: length x height up, width tall. Standing on an
-    // end: width x height up, length tall.
-    const std::array<std::array<double, 3>, 2> faces{
-        {{type.length_m, type.height_m, type.width_m}, {type.width_m, type.height_m, type.length_m}}};
-    for (std::size_t f = 0; f < faces.size(); ++f)
+    for (const Resting resting : {Resting::kOnSide, Resting::kOnEnd})
     {
-      const auto& [a_m, b_m, height_m] = faces[f];
-      BrickType variant = type;
-      variant.name = type.name + (f == 0 ? " lying on a side" : " standing on an end");
-      variant.length_m = std::max(a_m, b_m);
-      variant.width_m = std::min(a_m, b_m);
-      variant.height_m = height_m;
+      BrickType variant = restingAs(type, resting);
       if (topErrorM(variant, type.length_m, type.width_m) >= kTypeMarginM) variants.push_back(variant);
     }
-  }
   return variants;
 }
 
