@@ -1,26 +1,16 @@
+// How a box rests: the face up as the top of a type of its own, and its
+// frame on the box.
 #include <gtest/gtest.h>
 
 #include "brick_pose/catalogue/resting.h"
 #include "brick_pose/sim/scene.h"
+#include "plain_box.h"
 
 namespace brick_pose
 {
-namespace
-{
-BrickType box(const std::string& name, double length_m, double width_m, double height_m)
-{
-  BrickType type;
-  type.name = name;
-  type.length_m = length_m;
-  type.width_m = width_m;
-  type.height_m = height_m;
-  return type;
-}
-}  // namespace
-
 TEST(Resting, ABoxOnASideOrAnEndIsATypeWhoseTopIsTheFaceUp)
 {
-  const BrickType small = box("box_small", 0.30, 0.20, 0.15);
+  const BrickType small = plainBox("box_small", 0.30, 0.20, 0.15);
   const BrickType side = restingAs(small, Resting::kOnSide);
   EXPECT_EQ(side.name, "box_small lying on a side");
   EXPECT_EQ(side.catalogueName(), "box_small");
@@ -34,7 +24,7 @@ TEST(Resting, ABoxOnASideOrAnEndIsATypeWhoseTopIsTheFaceUp)
   EXPECT_DOUBLE_EQ(end.width_m, 0.15);
   EXPECT_DOUBLE_EQ(end.height_m, 0.30);
   // A flat box's end: its height is the shorter edge of the face up.
-  const BrickType flat_end = restingAs(box("box_flat", 0.30, 0.20, 0.07), Resting::kOnEnd);
+  const BrickType flat_end = restingAs(plainBox("box_flat", 0.30, 0.20, 0.07), Resting::kOnEnd);
   EXPECT_DOUBLE_EQ(flat_end.length_m, 0.20);
   EXPECT_DOUBLE_EQ(flat_end.width_m, 0.07);
   EXPECT_EQ(restingAs(small, Resting::kUpright).name, "box_small");
@@ -46,7 +36,7 @@ TEST(Resting, ABoxOnASideOrAnEndIsATypeWhoseTopIsTheFaceUp)
 
 TEST(Resting, TheCatalogueFindsItsTypesRestingOtherwiseByName)
 {
-  const BrickCatalogue catalogue({box("box_small", 0.30, 0.20, 0.15)});
+  const BrickCatalogue catalogue({plainBox("box_small", 0.30, 0.20, 0.15)});
   ASSERT_TRUE(catalogue.findResting("box_small").has_value());
   const std::optional<BrickType> side = catalogue.findResting("box_small lying on a side");
   ASSERT_TRUE(side.has_value());
@@ -57,15 +47,15 @@ TEST(Resting, TheCatalogueFindsItsTypesRestingOtherwiseByName)
 
 TEST(Resting, OnlyAPlainBoxMayBePublishedRestingOtherwise)
 {
-  BrickType brick = box("green", 0.60, 0.20, 0.20);
+  BrickType brick = plainBox("green", 0.60, 0.20, 0.20);
   brick.plate_hsv = HsvRange();
   EXPECT_FALSE(mayRestOtherwise(brick));
-  EXPECT_TRUE(mayRestOtherwise(box("box_small", 0.30, 0.20, 0.15)));
+  EXPECT_TRUE(mayRestOtherwise(plainBox("box_small", 0.30, 0.20, 0.15)));
 }
 
 TEST(Resting, AFacesFrameHasItsCentreItsOutwardNormalAndItsLongEdge)
 {
-  const BrickType small = box("box_small", 0.30, 0.20, 0.15);
+  const BrickType small = plainBox("box_small", 0.30, 0.20, 0.15);
   // +Y (a long side): 0.30 x 0.15, centred half a width out and half the
   // height down from the top's centre.
   const Eigen::Isometry3d side = sim::brickTFace(small, sim::CuboidFace::kPlusY);

@@ -5,21 +5,12 @@
 #include <gtest/gtest.h>
 
 #include "brick_pose/roi/type_evidence.h"
+#include "plain_box.h"
 
 namespace brick_pose
 {
 namespace
 {
-BrickType box(const std::string& name, double length_m, double width_m, double height_m)
-{
-  BrickType type;
-  type.name = name;
-  type.length_m = length_m;
-  type.width_m = width_m;
-  type.height_m = height_m;
-  return type;
-}
-
 SideFaceEvidence side(double height_m, bool on_support)
 {
   SideFaceEvidence evidence;
@@ -30,8 +21,8 @@ SideFaceEvidence side(double height_m, bool on_support)
   return evidence;
 }
 
-const BrickType kSmall = box("box_small", 0.30, 0.20, 0.15);
-const BrickType kFlat = box("box_flat", 0.30, 0.20, 0.07);
+const BrickType kSmall = plainBox("box_small", 0.30, 0.20, 0.15);
+const BrickType kFlat = plainBox("box_flat", 0.30, 0.20, 0.07);
 
 TEST(TypeEvidence, OneTopTwoHeightsIsADoubtUntilASideReachesTheSupport)
 {
@@ -57,7 +48,7 @@ TEST(TypeEvidence, OneTopTwoHeightsIsADoubtUntilASideReachesTheSupport)
 
 TEST(TypeEvidence, TheRivalsLeftOpenAreTheOnesTheDoubtNames)
 {
-  const BrickType tall = box("box_tall", 0.30, 0.20, 0.40);
+  const BrickType tall = plainBox("box_tall", 0.30, 0.20, 0.40);
   const std::vector<const BrickType*> rivals{&kSmall, &kFlat, &tall};
   // No side seen: both other heights stay open, in the rivals' order.
   const std::vector<const BrickType*> open = rivalsInDoubt(rivals, kSmall, 0.30, 0.20, {});
@@ -127,7 +118,7 @@ TEST(TypeEvidence, AmongEqualFitsTheTypeStandingExactlyAtTheFacesHeightOnFewestI
   // box on a large one standing on an end (0.40 m, one item, 1 mm off), or
   // a flat box on a large one and a flat one (0.47 m, two items, 9 mm off)
   // or on five items (0.20 + 4 x 0.07, 1 mm off). The fewest items win.
-  const StackHeights boxes = StackHeights::of({box("box_large", 0.40, 0.30, 0.25), kSmall, kFlat});
+  const StackHeights boxes = StackHeights::of({plainBox("box_large", 0.40, 0.30, 0.25), kSmall, kFlat});
   EXPECT_LT(standingMisfitM(kSmall, 0.549, boxes), standingMisfitM(kFlat, 0.549, boxes));
   // A side's misfit and the standing misfit add up.
   EXPECT_EQ(closestType(flat_first, 0.30, 0.20, {side(0.15, true)}, {0.0, 0.01}), &kSmall);
@@ -191,8 +182,8 @@ TEST(TypeEvidence, ALevelSeenWhereATypeWouldStandBreaksATieOfStandingMisfits)
 
 TEST(TypeEvidence, NearlyEqualFitsLeaveADoubtAndClearOnesDoNot)
 {
-  const BrickType upright = box("upright", 0.128, 0.038, 0.212);
-  const BrickType other = box("other", 0.147, 0.054, 0.243);
+  const BrickType upright = plainBox("upright", 0.128, 0.038, 0.212);
+  const BrickType other = plainBox("other", 0.147, 0.054, 0.243);
   const std::vector<const BrickType*> rivals{&upright, &other};
   // Measured 1 cm wide: as near the other's top as its own.
   EXPECT_FALSE(typeDoubt(rivals, upright, 0.133, 0.048, {}).empty());
@@ -204,8 +195,8 @@ TEST(TypeEvidence, NearlyEqualFitsLeaveADoubtAndClearOnesDoNot)
 
 TEST(TypeEvidence, BoxesOfOneShapeWithinTheMarginAreNoDoubt)
 {
-  const BrickType a = box("a", 0.195, 0.047, 0.267);
-  const BrickType b = box("b", 0.204, 0.047, 0.255);
+  const BrickType a = plainBox("a", 0.195, 0.047, 0.267);
+  const BrickType b = plainBox("b", 0.204, 0.047, 0.255);
   EXPECT_TRUE(typeDoubt({&a, &b}, a, 0.200, 0.047, {}).empty());
 }
 
@@ -213,7 +204,7 @@ TEST(TypeEvidence, LyingVariantsAreTheFacesThatDifferFromTheTop)
 {
   // A 0.40 x 0.30 x 0.25 m box: on a side it shows 0.40 x 0.25 (0.30 tall),
   // on an end 0.30 x 0.25 (0.40 tall).
-  const std::vector<BrickType> large = lyingVariants({box("large", 0.40, 0.30, 0.25)});
+  const std::vector<BrickType> large = lyingVariants({plainBox("large", 0.40, 0.30, 0.25)});
   ASSERT_EQ(large.size(), 2u);
   EXPECT_EQ(large[0].name, "large lying on a side");
   EXPECT_DOUBLE_EQ(large[0].length_m, 0.40);
@@ -225,14 +216,14 @@ TEST(TypeEvidence, LyingVariantsAreTheFacesThatDifferFromTheTop)
   EXPECT_DOUBLE_EQ(large[1].height_m, 0.40);
   // A brick 0.2 x 0.2 in section shows its top's size on its side: only the
   // end differs.
-  const std::vector<BrickType> red = lyingVariants({box("red", 0.30, 0.20, 0.20)});
+  const std::vector<BrickType> red = lyingVariants({plainBox("red", 0.30, 0.20, 0.20)});
   ASSERT_EQ(red.size(), 1u);
   EXPECT_EQ(red[0].name, "red standing on an end");
 
   // A crate whose side face is near its top's size: a face measured between
   // the two is a doubt, even with a side (0.28 vs 0.30 m tall); a top
   // measured at its size with its side 0.28 m down to the ground is not.
-  const BrickType crate = box("crate", 0.40, 0.30, 0.28);
+  const BrickType crate = plainBox("crate", 0.40, 0.30, 0.28);
   const std::vector<BrickType> lying = lyingVariants({crate});
   const std::vector<const BrickType*> rivals{&crate, &lying[0]};
   EXPECT_NE(typeDoubt(rivals, crate, 0.40, 0.285, {}).find("crate lying on a side"), std::string::npos);
