@@ -21,28 +21,24 @@ Eigen::Isometry3d brickTFace(const BrickType& type, CuboidFace face)
 {
   Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
   const double half_h = 0.5 * type.height_m;
-  Eigen::Vector3d normal, along;
-  switch (face)
+  if (face == CuboidFace::kBottom)
   {
-    case CuboidFace::kPlusX:
-    case CuboidFace::kMinusX:
-      normal = (face == CuboidFace::kPlusX ? 1.0 : -1.0) * Eigen::Vector3d::UnitX();
-      frame.translation() = 0.5 * type.length_m * normal - half_h * Eigen::Vector3d::UnitZ();
-      along = type.width_m >= type.height_m ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitZ();
-      break;
-    case CuboidFace::kPlusY:
-    case CuboidFace::kMinusY:
-      normal = (face == CuboidFace::kPlusY ? 1.0 : -1.0) * Eigen::Vector3d::UnitY();
-      frame.translation() = 0.5 * type.width_m * normal - half_h * Eigen::Vector3d::UnitZ();
-      along = type.length_m >= type.height_m ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
-      break;
-    case CuboidFace::kBottom:
-      frame.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
-      frame.translation() = -type.height_m * Eigen::Vector3d::UnitZ();
-      return frame;
-    default:
-      return frame;
+    frame.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    frame.translation() = -type.height_m * Eigen::Vector3d::UnitZ();
+    return frame;
   }
+  const Resting resting = restingWithFaceUp(face);
+  if (resting == Resting::kUpright) return frame;
+  // An end (±x) spans the width and the height, a side (±y) the length and
+  // the height; the box reaches half its length or width out to it.
+  const bool end = resting == Resting::kOnEnd;
+  const bool plus = face == CuboidFace::kPlusX || face == CuboidFace::kPlusY;
+  const Eigen::Vector3d normal = (plus ? 1.0 : -1.0) * (end ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY());
+  const Eigen::Vector3d across = end ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX();
+  const double across_m = end ? type.width_m : type.length_m;
+  const double out_m = end ? type.length_m : type.width_m;
+  frame.translation() = 0.5 * out_m * normal - half_h * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d along = across_m >= type.height_m ? across : Eigen::Vector3d::UnitZ();
   frame.linear().col(0) = along;
   frame.linear().col(1) = normal.cross(along);
   frame.linear().col(2) = normal;

@@ -20,6 +20,8 @@ namespace sim
 namespace
 {
 constexpr float kNoDepth = std::numeric_limits<float>::quiet_NaN();
+/// Values of the face label image: CuboidFace::kNone .. kMinusY.
+constexpr int kCuboidFaceLabels = static_cast<int>(CuboidFace::kMinusY) + 1;
 
 /// Per-pixel result of the geometry pass.
 struct GeometryBuffers
@@ -439,31 +441,36 @@ private:
       truth.camera_T_brick = caster_.cameraTBricks()[i];
       truths.push_back(truth);
     }
+    // Visible pixels of every face of every brick, in one pass: the top's,
+    // and the face up of a brick on a side or an end.
+    std::vector<std::array<int, kCuboidFaceLabels>> face_pixels(truths.size(), std::array<int, kCuboidFaceLabels>{});
     for (int v = 0; v < frame.instance_labels.rows; ++v)
       for (int u = 0; u < frame.instance_labels.cols; ++u)
       {
         const int label = frame.instance_labels.at<unsigned short>(v, u);
-        if (label > 0 && frame.face_labels.at<unsigned char>(v, u) == static_cast<unsigned char>(CuboidFace::kTop))
-          ++truths[label - 1].visible_top_pixels;
+        const int face = frame.face_labels.at<unsigned char>(v, u);
+        if (label > 0 && face < kCuboidFaceLabels) ++face_pixels[label - 1][face];
       }
     const std::vector<int> touching = touchingNeighbourCounts(scene_);
     for (int i = 0; i < static_cast<int>(truths.size()); ++i)
     {
       BrickTruth& truth = truths[i];
+      truth.visible_top_pixels = face_pixels[i][static_cast<int>(CuboidFace::kTop)];
       const double area_px = unoccludedTopFaceArea(truth);
       truth.visible_fraction = area_px > 0.0 ? std::min(1.0, truth.visible_top_pixels / area_px) : 0.0;
       truth.top_face = topFaceVisibility(scene_, caster_, camera_, i);
       truth.top_face_complete = truth.top_face.complete();
       truth.touching_neighbours = touching[i];
       if (restingWithFaceUp(truth.top_face.up_face) != Resting::kUpright)
-        truth.resting_face = restingFaceTruth(frame, i, truth.top_face.up_face);
+        truth.resting_face =
+            restingFaceTruth(i, truth.top_face.up_face, face_pixels[i][static_cast<int>(truth.top_face.up_face)]);
     }
     return truths;
   }
 
   /// The face up of brick i, lying on a side or standing on an end, as the
-  /// top of the type restingAs() makes of it.
-  RestingFaceTruth restingFaceTruth(const SyntheticFrame& frame, int i, CuboidFace face) const
+  /// top of the type restingAs() makes of it; `visible_px` of it are seen.
+  RestingFaceTruth restingFaceTruth(int i, CuboidFace face, int visible_px) const
   {
     const BrickType as_top = restingAs(scene_.bricks[i].type, restingWithFaceUp(face));
     RestingFaceTruth resting;
@@ -472,12 +479,6 @@ private:
     resting.dimensions_m = as_top.dimensions_m();
     resting.camera_T_face = caster_.cameraTBricks()[i] * brickTFace(scene_.bricks[i].type, face);
     resting.view = faceVisibility(scene_, caster_, camera_, i, face);
-    int visible_px = 0;
-    for (int v = 0; v < frame.instance_labels.rows; ++v)
-      for (int u = 0; u < frame.instance_labels.cols; ++u)
-        if (frame.instance_labels.at<unsigned short>(v, u) == i + 1 &&
-            frame.face_labels.at<unsigned char>(v, u) == static_cast<unsigned char>(face))
-          ++visible_px;
     BrickTruth as_truth;
     as_truth.dimensions_m = resting.dimensions_m;
     as_truth.camera_T_brick = resting.camera_T_face;

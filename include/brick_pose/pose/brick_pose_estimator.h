@@ -99,14 +99,19 @@ public:
   const BrickCatalogue& catalogue() const { return catalogue_; }
 
 private:
-  /// The type a candidate names (a catalogue type or one resting
-  /// otherwise). Throws InputError for an unknown one.
-  const BrickType& typeOf(const BrickCandidate& candidate) const;
+  /// A type a candidate may name, with its model cloud.
+  struct Model
+  {
+    BrickType type;
+    registration::PointSet points;
+  };
+
+  /// The model of the type a candidate names (a catalogue type or one
+  /// resting otherwise). Throws InputError for an unknown one.
+  const Model& modelOf(const BrickCandidate& candidate) const;
 
   BrickCatalogue catalogue_;
   BrickPoseEstimatorParams params_;
-  /// Every type a candidate may name, by name, with its model cloud.
-  std::map<std::string, BrickType> types_;
-  std::map<std::string, registration::PointSet> models_;
+  std::map<std::string, Model> models_;  ///< by type name
 };
 }  // namespace brick_pose

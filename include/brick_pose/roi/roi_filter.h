@@ -309,9 +309,6 @@ private:
                                   const std::vector<SideFaceEvidence>& sides,
                                   const std::vector<const BrickType*>& upright,
                                   const std::vector<const BrickType*>& rivals, double upright_misfit_m) const;
-  /// The catalogue type of that name, or one of lying_variants_; null for
-  /// none.
-  const BrickType* typeNamed(const std::string& name) const;
   /// How far each of `types` could not stand at the face's height, its
   /// footing unseen counted (see closestType()); empty without a support.
   std::vector<double> standingMisfits(const std::vector<const BrickType*>& types,

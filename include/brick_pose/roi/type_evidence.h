@@ -46,9 +46,6 @@ const BrickType* closestType(const std::vector<const BrickType*>& fitting, doubl
                              const std::vector<SideFaceEvidence>& sides,
                              const std::vector<double>& standing_misfits_m = {}, double* misfit_m = nullptr);
 
-/// closestType()'s misfit of one type (m), without where it stands.
-double typeMisfitM(const BrickType& type, double length_m, double width_m, const std::vector<SideFaceEvidence>& sides);
-
 /// The faces of `types` other than their tops that differ from the top by
 /// kTypeMarginM or more, each as a type whose "top" is that face, as tall as
 /// the dimension left over, named "<type> lying on a side" or "<type>

@@ -73,35 +73,32 @@ BrickPoseEstimator::BrickPoseEstimator(const BrickCatalogue& catalogue, const Br
     {
       if (resting != Resting::kUpright && !mayRestOtherwise(type)) continue;
       const BrickType as_top = restingAs(type, resting);
-      models_[as_top.name] = registration::buildBrickModelCloud(as_top, options);
-      types_[as_top.name] = as_top;
+      models_[as_top.name] = {as_top, registration::buildBrickModelCloud(as_top, options)};
     }
 }
 
-const BrickType& BrickPoseEstimator::typeOf(const BrickCandidate& candidate) const
+const BrickPoseEstimator::Model& BrickPoseEstimator::modelOf(const BrickCandidate& candidate) const
 {
-  const auto type = types_.find(candidate.type_name);
-  if (type == types_.end()) throw InputError("candidate of unknown brick type '" + candidate.type_name + "'");
-  return type->second;
+  const auto model = models_.find(candidate.type_name);
+  if (model == models_.end()) throw InputError("candidate of unknown brick type '" + candidate.type_name + "'");
+  return model->second;
 }
 
 BrickRegistration BrickPoseEstimator::registerCandidate(const BrickCandidate& candidate) const
 {
   const auto start = std::chrono::steady_clock::now();
-  const auto model = models_.find(candidate.type_name);
-  if (model == models_.end())
-    throw InputError("candidate of unknown brick type '" + candidate.type_name + "'");
+  const Model& model = modelOf(candidate);
   if (!candidate.points || candidate.points->size() < 4)
     throw InputError("candidate '" + candidate.type_name + "' has fewer than 4 points");
   registration::PointSet target = registration::fromPcl(*candidate.points);
   // The model carries normals and the segment does not: register points only.
   registration::PointSet source;
-  source.points = model->second.points;
+  source.points = model.points.points;
   // The LCP of the whole-face model can reach only the fraction of the face
   // that is visible: an occluded brick needs a lower overlap, or Super4PCS
   // rejects its (correct) pose as too poor a match.
   registration::Super4PCSParams params = params_.super4pcs;
-  const BrickType& type = typeOf(candidate);
+  const BrickType& type = model.type;
   const double visible_fraction =
       visibleFaceArea(*candidate.points, candidate.normal) / (type.length_m * type.width_m);
   params.overlap = std::clamp(visible_fraction, kMinOverlap, params_.super4pcs.overlap);
@@ -128,7 +125,7 @@ BrickRegistration BrickPoseEstimator::registerCandidate(const BrickCandidate& ca
 
 BrickPoseEstimate BrickPoseEstimator::refine(const BrickCandidate& candidate, const BrickRegistration& registration) const
 {
-  const BrickType& type = typeOf(candidate);
+  const BrickType& type = modelOf(candidate).type;
   BrickPoseEstimate estimate;
   estimate.type_name = type.name;
   estimate.catalogue_type = type.catalogueName();

@@ -379,7 +379,7 @@ void RoiFilter::placeOnCatalogueSize(const RgbdFrame& frame, BrickCandidate& can
   constexpr double kColourAgreementPx = 2.0;
   // A colour segment ends where its colour does, not where depth does.
   if (!params_.place_on_catalogue_size || !candidate.complete || candidate.typed_by_colour) return;
-  const BrickType* type = typeNamed(candidate.type_name);
+  const std::optional<BrickType> type = catalogue_.findResting(candidate.type_name);
   if (!type) return;
   const std::array<Eigen::Vector3d, 4> corners_m =
       cornersTrimmedToSize(candidate.corners_m, candidate.edge_kinds, type->length_m, type->width_m,
@@ -445,7 +445,7 @@ RoiOutcome RoiFilter::filterSplittingAsMeasured(const RgbdFrame& frame, const Se
     if (segment.type_name.empty() && mayHoldTwoBricks(candidate) && mayShowASeamAcross(frame, segment, candidate))
     {
       // The smaller types only: the face's own type would tile it whole.
-      const BrickType* own = typeNamed(candidate.type_name);
+      const std::optional<BrickType> own = catalogue_.findResting(candidate.type_name);
       std::vector<const BrickType*> smaller;
       for (const BrickType& type : catalogue_.types())
         if (own && type.length_m * type.width_m < 0.7 * own->length_m * own->width_m) smaller.push_back(&type);
@@ -744,7 +744,7 @@ void RoiFilter::judgeCompleteness(const RgbdFrame& frame, const FrameContext& co
 {
   candidate.complete = false;
   candidate.partial_reason.clear();
-  const BrickType* type = typeNamed(candidate.type_name);
+  const std::optional<BrickType> type = catalogue_.findResting(candidate.type_name);
   if (!type)
   {
     candidate.partial_reason = "unknown brick type '" + candidate.type_name + "'";

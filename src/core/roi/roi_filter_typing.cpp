@@ -209,7 +209,7 @@ std::optional<std::string> RoiFilter::typeCutOffFace(const RgbdFrame& frame, con
   }
   if (std::optional<std::string> misfit = shapeMisfit(candidate)) return cut + "; " + *misfit;
   if (std::optional<std::string> no_type = typeBySize(frame, context, candidate)) return cut + "; " + *no_type;
-  const BrickType* type = typeNamed(candidate.type_name);
+  const std::optional<BrickType> type = catalogue_.findResting(candidate.type_name);
   if (type && !fitsClosely(*type))
     return cut + "; its visible part is no " + type->name + " top within the dimension tolerance";
   const std::string doubt = "it is cut off, and its type is the one its visible part fits (a larger one's part may look so)";
@@ -220,12 +220,12 @@ std::optional<std::string> RoiFilter::typeCutOffFace(const RgbdFrame& frame, con
 std::optional<std::string> RoiFilter::heightRulesOutType(const RgbdFrame& frame, const FrameContext& context,
                                                          const BrickCandidate& candidate) const
 {
-  const BrickType* own = typeNamed(candidate.type_name);
+  const std::optional<BrickType> own = catalogue_.findResting(candidate.type_name);
   const double tolerance_m = params_.height_above_support_tolerance_m;
   if (!own || !heightTellsTypes(context)) return std::nullopt;
   const double height_m = context.up.heightAboveSupport(candidate.centroid_m);
   // Most faces stand where their type does: that needs no levels read.
-  if (!typesStandingAt({own}, height_m, {}, stack_heights_, tolerance_m).empty()) return std::nullopt;
+  if (!typesStandingAt({&*own}, height_m, {}, stack_heights_, tolerance_m).empty()) return std::nullopt;
   // What shows a top of the face's size (a type, or a box lying on a side),
   // and what stands anywhere at all.
   std::vector<const BrickType*> shown, all;
@@ -331,14 +331,6 @@ const BrickType* RoiFilter::restingInstead(const BrickCandidate& candidate,
       closestType(resting, candidate.length_m, candidate.width_m, sides, standingMisfits(resting, standing), &misfit_m);
   if (!lying || (upright_misfit_m >= 0.0 && misfit_m + kTypeMarginM > upright_misfit_m)) return nullptr;
   return lying;
-}
-
-const BrickType* RoiFilter::typeNamed(const std::string& name) const
-{
-  if (const BrickType* type = catalogue_.find(name)) return type;
-  for (const BrickType& variant : lying_variants_)
-    if (variant.name == name) return &variant;
-  return nullptr;
 }
 
 std::vector<double> RoiFilter::standingMisfits(const std::vector<const BrickType*>& types,
@@ -482,7 +474,7 @@ void RoiFilter::doubtComposedTop(const RgbdFrame& frame, const FrameContext& con
                                  bool in_layer, BrickCandidate& candidate) const
 {
   if (!candidate.complete) return;
-  const BrickType* type = typeNamed(candidate.type_name);
+  const std::optional<BrickType> type = catalogue_.findResting(candidate.type_name);
   if (!type) return;
   if (!smallerTypeTiling(catalogue_.types(), *type, params_.dimensions.tolerance_m).type) return;
   // Smaller boxes side by side stand where the face is, as exactly as any

@@ -27,6 +27,23 @@ double typeErrorM(const BrickType& type, double length_m, double width_m, const 
   return error_m;
 }
 
+/// closestType()'s misfit of one type (m), without where it stands.
+double typeMisfitM(const BrickType& type, double length_m, double width_m, const std::vector<SideFaceEvidence>& sides)
+{
+  double error_m = topErrorM(type, length_m, width_m);
+  for (const SideFaceEvidence& side : sides)
+  {
+    error_m += side.foot_on_support ? std::abs(side.visible_height_m - type.height_m)
+                                    : std::max(0.0, side.visible_height_m - type.height_m);
+    // A type taller than a side ending on something needs the rest of
+    // its side hidden there by a neighbour just that high: among types
+    // otherwise tied, the one the side ends at the bottom of is likelier.
+    if (!side.foot_on_support && type.height_m > side.visible_height_m + kTypeMarginM)
+      error_m += kHiddenSidePenaltyM;
+  }
+  return error_m;
+}
+
 bool ruledOut(const BrickType& rival, const BrickType& best, double length_m, double width_m,
               const std::vector<SideFaceEvidence>& sides, const SideFaceParams& params, bool rival_on_support_alone)
 {
@@ -50,22 +67,6 @@ bool sameShape(const BrickType& a, const BrickType& b)
 bool showsTop(const BrickType& type, double length_m, double width_m, double tolerance_m)
 {
   return std::abs(length_m - type.length_m) <= tolerance_m && std::abs(width_m - type.width_m) <= tolerance_m;
-}
-
-double typeMisfitM(const BrickType& type, double length_m, double width_m, const std::vector<SideFaceEvidence>& sides)
-{
-  double error_m = topErrorM(type, length_m, width_m);
-  for (const SideFaceEvidence& side : sides)
-  {
-    error_m += side.foot_on_support ? std::abs(side.visible_height_m - type.height_m)
-                                    : std::max(0.0, side.visible_height_m - type.height_m);
-    // A type taller than a side ending on something needs the rest of
-    // its side hidden there by a neighbour just that high: among types
-    // otherwise tied, the one the side ends at the bottom of is likelier.
-    if (!side.foot_on_support && type.height_m > side.visible_height_m + kTypeMarginM)
-      error_m += kHiddenSidePenaltyM;
-  }
-  return error_m;
 }
 
 const BrickType* closestType(const std::vector<const BrickType*>& fitting, double length_m, double width_m,
